@@ -1,11 +1,19 @@
 //! ellipgrid: elliptic structured grid generation after Spekreijse & Boerstoel (NLR TP 96338).
+pub mod arclength;
+pub mod boundary;
+pub mod case;
+pub mod control;
+pub mod domain;
 pub mod error;
 pub mod grid;
 pub mod io;
+pub mod job;
 pub mod linsolve;
 pub mod multigrid;
+pub mod poisson2d;
 pub mod quality;
 pub mod stencil;
+pub mod transform;
 
 pub use error::{Error, Result};
 pub use grid::{Edge, Grid2, Grid3};

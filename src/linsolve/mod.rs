@@ -59,3 +59,11 @@ pub trait LinearSolver: Send + Sync {
     /// A short name for reports ("direct-lu", "multigrid").
     fn name(&self) -> &'static str;
 }
+
+/// The linear solver called `name` in case files: "direct" or "multigrid".
+pub fn by_name(name: &str) -> Result<Box<dyn LinearSolver>, String> {
+    match name {
+        "direct" => Ok(Box::new(direct::DirectLu::new())),
+        _ => Err(format!("linear solver '{name}': expected \"direct\"")),
+    }
+}

@@ -1,0 +1,430 @@
+//! The case file: a TOML description of blocks (edge curves, point counts, distributions),
+//! solver options and outputs. See README.md, "Case files", for the reference.
+//!
+//! Parsing is strict (unknown keys are errors) and every error names the file, the block and
+//! the edge. Relative input paths (airfoil tables) are relative to the case file's folder.
+
+use crate::boundary::Boundary2;
+use crate::domain::ControlKind;
+use crate::grid::Edge;
+use crate::poisson2d::PicardParams;
+use crate::{Error, Result};
+use ellipgrid_geometry::{self as geo, Curve, Vec3};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+/// A whole case file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// Where and how to write the grid.
+    #[serde(default)]
+    pub output: OutputSpec,
+    /// Solver options shared by all blocks.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// The blocks, gridded independently and written in this order.
+    #[serde(rename = "block")]
+    pub blocks: Vec<BlockSpec>,
+}
+
+/// `[output]`: files to write and the Plot3D flavour.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Output files, by extension: `.x`, `.xyz`, `.p3d`, `.g` Plot3D; `.vts` VTK (one block);
+    /// `.vtm` VTK multi-block. Relative to the current directory. `-o` replaces them.
+    #[serde(default)]
+    pub files: Vec<PathBuf>,
+    /// Plot3D encoding: "unformatted" (Fortran records, default), "formatted" (ASCII) or
+    /// "stream" (C binary).
+    pub encoding: Option<String>,
+    /// Plot3D precision: "double" (default) or "single".
+    pub precision: Option<String>,
+    /// Write the block count record (default true).
+    pub multi_block: Option<bool>,
+    /// Write planar blocks as 2D Plot3D (x, y only; default true). False writes z = 0, nk = 1.
+    pub two_d: Option<bool>,
+}
+
+/// `[solver]`: options of the elliptic solve.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSpec {
+    /// Linear solver of each Picard step: "direct" (sparse LU) or "multigrid".
+    pub linear: String,
+    /// Control functions: "algebraic" (the paper's, default) or "laplace" (all zero).
+    pub control: ControlKind,
+    /// Picard iteration parameters.
+    #[serde(flatten)]
+    pub picard: PicardParams,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        SolverSpec {
+            linear: "direct".into(),
+            control: ControlKind::Algebraic,
+            picard: PicardParams::default(),
+        }
+    }
+}
+
+/// `[[block]]`: one block with its four edges.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSpec {
+    /// Name used in messages and outputs (default "block<k>").
+    pub name: Option<String>,
+    /// Nodes along i (on E3 and E4).
+    pub ni: usize,
+    /// Nodes along j (on E1 and E2).
+    pub nj: usize,
+    #[serde(rename = "E1")]
+    pub e1: EdgeSpec,
+    #[serde(rename = "E2")]
+    pub e2: EdgeSpec,
+    #[serde(rename = "E3")]
+    pub e3: EdgeSpec,
+    #[serde(rename = "E4")]
+    pub e4: EdgeSpec,
+}
+
+/// One edge: a curve, the distribution of nodes along it, and its direction.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeSpec {
+    pub curve: CurveSpec,
+    #[serde(default)]
+    pub distribution: DistributionSpec,
+    /// Run along the curve from its end to its start.
+    #[serde(default)]
+    pub reverse: bool,
+}
+
+/// Edge curves. Points are `[x, y]` (or `[x, y, z]` with z = 0 for planar blocks).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum CurveSpec {
+    /// Straight segment.
+    Line { from: Vec<f64>, to: Vec<f64> },
+    /// Circular arc about `center` from `start_deg` to `end_deg` (counter-clockwise if
+    /// end > start).
+    Arc {
+        center: Vec<f64>,
+        radius: f64,
+        start_deg: f64,
+        end_deg: f64,
+    },
+    /// Circular arc through three points.
+    ArcThrough {
+        from: Vec<f64>,
+        mid: Vec<f64>,
+        to: Vec<f64>,
+    },
+    /// Piecewise-linear curve through points.
+    Polyline { points: Vec<Vec<f64>> },
+    /// C² cubic spline through points (chord-length parametrized).
+    Spline { points: Vec<Vec<f64>> },
+    /// NACA 4-digit airfoil: `side` "both" (TE → upper → LE → lower → TE), "upper" or "lower"
+    /// (LE → TE), scaled by `chord` and moved to `origin` (leading edge).
+    Naca4 {
+        code: String,
+        #[serde(default = "one")]
+        chord: f64,
+        #[serde(default = "yes")]
+        sharp_te: bool,
+        #[serde(default = "both")]
+        side: String,
+        #[serde(default)]
+        origin: Option<Vec<f64>>,
+    },
+    /// Airfoil table (Selig or Lednicer .dat), splined; scaled by `chord`, moved to `origin`.
+    Airfoil {
+        file: PathBuf,
+        #[serde(default = "one")]
+        chord: f64,
+        #[serde(default)]
+        origin: Option<Vec<f64>>,
+    },
+    /// The edge's nodes themselves; their count must match the block and `distribution` is
+    /// not used.
+    Nodes { points: Vec<Vec<f64>> },
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn yes() -> bool {
+    true
+}
+fn both() -> String {
+    "both".into()
+}
+
+/// Node distribution along an edge. Spacings are lengths along the curve, at the edge's
+/// first node (`first`) and last node (`last`) in index order.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum DistributionSpec {
+    /// Equal arclength spacing.
+    #[default]
+    Uniform,
+    /// Geometric growth from the first spacing.
+    Geometric { first: f64 },
+    /// Vinokur's one- or two-sided stretching hitting the given spacings exactly.
+    Vinokur { first: Option<f64>, last: Option<f64> },
+}
+
+/// A case file read from disk, with its folder for relative input paths.
+#[derive(Clone, Debug)]
+pub struct LoadedCase {
+    pub path: PathBuf,
+    pub case: Case,
+}
+
+impl LoadedCase {
+    /// Reads and parses a case file.
+    pub fn read(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses case-file text; `path` is used for messages and relative paths.
+    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+        let case: Case = toml::from_str(text)
+            .map_err(|e| Error::input(path.display().to_string(), e.to_string()))?;
+        if case.blocks.is_empty() {
+            return Err(Error::input(
+                path.display().to_string(),
+                "the case defines no [[block]]",
+            ));
+        }
+        Ok(LoadedCase {
+            path: path.to_path_buf(),
+            case,
+        })
+    }
+
+    /// "file: block 'name'" for messages.
+    pub fn block_place(&self, k: usize) -> String {
+        format!("{}: block '{}'", self.path.display(), self.block_name(k))
+    }
+
+    /// The name of block k.
+    pub fn block_name(&self, k: usize) -> String {
+        self.case.blocks[k]
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("block{}", k + 1))
+    }
+
+    /// The validated planar boundary of block k.
+    pub fn planar_boundary(&self, k: usize) -> Result<Boundary2<2>> {
+        let b = &self.case.blocks[k];
+        let place = self.block_place(k);
+        if b.ni < 3 || b.nj < 3 {
+            return Err(Error::input(
+                &place,
+                format!("ni = {}, nj = {}: a block needs at least 3 nodes each way", b.ni, b.nj),
+            ));
+        }
+        let edges = [(Edge::E1, &b.e1), (Edge::E2, &b.e2), (Edge::E3, &b.e3), (Edge::E4, &b.e4)];
+        let mut pts: [Vec<[f64; 2]>; 4] = Default::default();
+        for (e, spec) in edges {
+            let n = if e.runs_along_i() { b.ni } else { b.nj };
+            let at = format!("{place}, edge {e}");
+            let p3 = self.edge_points(spec, n, &at)?;
+            if let Some(k) = p3.iter().position(|p| p.z.abs() > 0.0) {
+                return Err(Error::input(
+                    at,
+                    format!("point {k} has z = {} but the block is planar", p3[k].z),
+                ));
+            }
+            pts[e.index()] = p3.iter().map(|p| [p.x, p.y]).collect();
+        }
+        Boundary2::new(pts, &place)
+    }
+
+    /// The n nodes of one edge.
+    fn edge_points(&self, spec: &EdgeSpec, n: usize, at: &str) -> Result<Vec<Vec3>> {
+        let geo_err = |source| Error::Geometry {
+            place: at.to_string(),
+            source,
+        };
+        if let CurveSpec::Nodes { points } = &spec.curve {
+            if !matches!(spec.distribution, DistributionSpec::Uniform) {
+                return Err(Error::input(at, "a 'nodes' edge takes no distribution"));
+            }
+            let mut p = points
+                .iter()
+                .enumerate()
+                .map(|(k, q)| point(q, at, &format!("points[{k}]")))
+                .collect::<Result<Vec<_>>>()?;
+            if p.len() != n {
+                return Err(Error::input(
+                    at,
+                    format!("{} nodes given but the block needs {n} on this edge", p.len()),
+                ));
+            }
+            if spec.reverse {
+                p.reverse();
+            }
+            return Ok(p);
+        }
+        let curve = self.curve(&spec.curve, at)?;
+        let map = geo::ArclengthMap::new(curve.as_ref());
+        let len = map.length();
+        if !(len.is_finite() && len > 0.0) {
+            return Err(Error::input(at, "the curve has zero length"));
+        }
+        let rel = |v: f64, name: &str| -> Result<f64> {
+            if v.is_finite() && v > 0.0 {
+                Ok(v / len)
+            } else {
+                Err(Error::input(at, format!("{name} spacing must be positive, got {v}")))
+            }
+        };
+        let dist = match &spec.distribution {
+            DistributionSpec::Uniform => geo::Distribution::Uniform,
+            DistributionSpec::Geometric { first } => geo::Distribution::Geometric {
+                first: rel(*first, "first")?,
+            },
+            DistributionSpec::Vinokur { first, last } => geo::Distribution::Vinokur {
+                first: first.map(|v| rel(v, "first")).transpose()?,
+                last: last.map(|v| rel(v, "last")).transpose()?,
+            },
+        };
+        let sigma = dist.sample(n).map_err(geo_err)?;
+        // `first` belongs to the edge's first node; a reversed edge starts at the curve's end,
+        // so node k sits at curve arclength 1 − σ_k.
+        let p = if spec.reverse {
+            let mut p = geo::sample(curve.as_ref(), &geo::reverse(&sigma));
+            p.reverse();
+            p
+        } else {
+            geo::sample(curve.as_ref(), &sigma)
+        };
+        Ok(p)
+    }
+
+    /// The geometric curve of a spec.
+    fn curve(&self, spec: &CurveSpec, at: &str) -> Result<Box<dyn Curve>> {
+        let geo_err = |source| Error::Geometry {
+            place: at.to_string(),
+            source,
+        };
+        let pts = |v: &[Vec<f64>]| -> Result<Vec<Vec3>> {
+            v.iter()
+                .enumerate()
+                .map(|(k, q)| point(q, at, &format!("points[{k}]")))
+                .collect()
+        };
+        Ok(match spec {
+            CurveSpec::Line { from, to } => Box::new(geo::Line {
+                from: point(from, at, "from")?,
+                to: point(to, at, "to")?,
+            }),
+            CurveSpec::Arc {
+                center,
+                radius,
+                start_deg,
+                end_deg,
+            } => Box::new(
+                geo::Arc::new(point(center, at, "center")?, *radius, *start_deg, *end_deg)
+                    .map_err(geo_err)?,
+            ),
+            CurveSpec::ArcThrough { from, mid, to } => Box::new(
+                geo::Arc::through(
+                    point(from, at, "from")?,
+                    point(mid, at, "mid")?,
+                    point(to, at, "to")?,
+                )
+                .map_err(geo_err)?,
+            ),
+            CurveSpec::Polyline { points } => {
+                Box::new(geo::Polyline::new(pts(points)?).map_err(geo_err)?)
+            }
+            CurveSpec::Spline { points } => {
+                Box::new(geo::Spline::new(pts(points)?).map_err(geo_err)?)
+            }
+            CurveSpec::Naca4 {
+                code,
+                chord,
+                sharp_te,
+                side,
+                origin,
+            } => {
+                let foil = geo::Naca4::new(code, *chord, *sharp_te).map_err(geo_err)?;
+                let o = origin_of(origin, at)?;
+                match side.as_str() {
+                    "both" => Box::new(Shifted(foil, o)),
+                    "upper" => Box::new(Shifted(foil.upper(), o)),
+                    "lower" => Box::new(Shifted(foil.lower(), o)),
+                    s => {
+                        return Err(Error::input(
+                            at,
+                            format!("naca4 side '{s}': expected both, upper or lower"),
+                        ))
+                    }
+                }
+            }
+            CurveSpec::Airfoil {
+                file,
+                chord,
+                origin,
+            } => {
+                let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
+                let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
+                let pts = geo::read_airfoil_dat(&text).map_err(|source| Error::Geometry {
+                    place: format!("{at}: {}", path.display()),
+                    source,
+                })?;
+                let o = origin_of(origin, at)?;
+                let pts = pts.into_iter().map(|p| p * *chord + o).collect();
+                Box::new(geo::airfoil_curve(pts).map_err(geo_err)?)
+            }
+            CurveSpec::Nodes { .. } => unreachable!("handled by edge_points"),
+        })
+    }
+}
+
+/// A curve moved by a constant offset.
+struct Shifted<C>(C, Vec3);
+
+impl<C: Curve> Curve for Shifted<C> {
+    fn point(&self, u: f64) -> Vec3 {
+        self.0.point(u) + self.1
+    }
+    fn derivative(&self, u: f64) -> Vec3 {
+        self.0.derivative(u)
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        self.0.breakpoints()
+    }
+}
+
+fn origin_of(o: &Option<Vec<f64>>, at: &str) -> Result<Vec3> {
+    o.as_ref()
+        .map(|v| point(v, at, "origin"))
+        .transpose()
+        .map(|p| p.unwrap_or_else(Vec3::zeros))
+}
+
+/// A point from `[x, y]` or `[x, y, z]`, finite.
+fn point(v: &[f64], at: &str, what: &str) -> Result<Vec3> {
+    let p = match v {
+        [x, y] => Vec3::new(*x, *y, 0.0),
+        [x, y, z] => Vec3::new(*x, *y, *z),
+        _ => {
+            return Err(Error::input(
+                at,
+                format!("{what}: a point has 2 or 3 coordinates, got {}", v.len()),
+            ))
+        }
+    };
+    if p.iter().any(|c| !c.is_finite()) {
+        return Err(Error::input(at, format!("{what}: coordinate is not finite")));
+    }
+    Ok(p)
+}

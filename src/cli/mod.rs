@@ -1,0 +1,170 @@
+//! clap definitions and the subcommands. Exit codes: 0 success, 2 bad input (unreadable or
+//! malformed files, inconsistent edges, …), 3 folded grid, 4 solver failure.
+
+mod print;
+
+use clap::{Parser, Subcommand};
+use ellipgrid::case::LoadedCase;
+use ellipgrid::io::plot3d;
+use ellipgrid::io::Block;
+use ellipgrid::job;
+use ellipgrid::quality::{self, QualityReport};
+use ellipgrid::{Error, Result};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Elliptic structured grid generation (Spekreijse & Boerstoel, NLR TP 96338).
+#[derive(Parser, Debug)]
+#[command(name = "ellipgrid", version, about, long_about = None)]
+struct Opts {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Generate the grids of a case file and write them.
+    Run {
+        /// The case file (TOML; see README.md, "Case files").
+        case: PathBuf,
+        /// Output file(s), replacing `[output] files` of the case: .x/.xyz/.p3d/.g (Plot3D),
+        /// .vts or .vtm (VTK). Repeat for several.
+        #[arg(short, long = "output", value_name = "OUT")]
+        output: Vec<PathBuf>,
+        /// Write the run report (Picard history and quality of every block) as JSON.
+        #[arg(long, value_name = "FILE.json")]
+        report: Option<PathBuf>,
+        /// Write the grid even if it folds (the exit code is still 3).
+        #[arg(long)]
+        allow_folded: bool,
+        /// Print only errors.
+        #[arg(short, long)]
+        quiet: bool,
+    },
+    /// Print the quality report of every block of a Plot3D grid file (exit 3 if any folds).
+    Check {
+        /// The grid file (Plot3D, any flavour: autodetected).
+        grid: PathBuf,
+        /// Write the report as JSON.
+        #[arg(long, value_name = "FILE.json")]
+        report: Option<PathBuf>,
+    },
+}
+
+/// Parses the command line and runs it.
+pub fn main() -> ExitCode {
+    let opts = Opts::parse();
+    let r = match opts.command {
+        Command::Run {
+            case,
+            output,
+            report,
+            allow_folded,
+            quiet,
+        } => run(&case, &output, report.as_deref(), allow_folded, quiet),
+        Command::Check { grid, report } => check(&grid, report.as_deref()),
+    };
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
+fn write_json<T: serde::Serialize>(path: &Path, value: &T) -> Result<()> {
+    let text = serde_json::to_string_pretty(value)
+        .map_err(|e| Error::input(path.display().to_string(), e.to_string()))?;
+    ellipgrid::io::write_atomic(path, |w| w.write_all(text.as_bytes()))
+}
+
+fn run(
+    case_path: &Path,
+    output: &[PathBuf],
+    report: Option<&Path>,
+    allow_folded: bool,
+    quiet: bool,
+) -> Result<()> {
+    let case = LoadedCase::read(case_path)?;
+    let paths: Vec<PathBuf> = if output.is_empty() {
+        case.case.output.files.clone()
+    } else {
+        output.to_vec()
+    };
+    if paths.is_empty() {
+        return Err(Error::input(
+            case_path.display().to_string(),
+            "no output: give -o OUT or [output] files = [...]",
+        ));
+    }
+    for p in &paths {
+        job::output_kind(p)?;
+    }
+    let fmt = job::plot3d_format(&case)?;
+    let mut gen = job::generate(&case, |b| {
+        if !quiet {
+            print::block(b);
+        }
+    })?;
+    let fold = gen.report.fold_error();
+    if fold.is_none() || allow_folded {
+        let written = job::write_outputs(&gen.blocks, &paths, &fmt)?;
+        gen.report.outputs = written.iter().map(|p| p.display().to_string()).collect();
+        if !quiet {
+            for p in &written {
+                println!("wrote {}", p.display());
+            }
+        }
+    }
+    if let Some(r) = report {
+        write_json(r, &gen.report)?;
+    }
+    if !quiet {
+        print::not_converged(&gen.report);
+    }
+    match fold {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
+    let file = plot3d::read_plot3d(grid)?;
+    let mut reports: Vec<(String, QualityReport)> = Vec::new();
+    for (k, b) in file.blocks.iter().enumerate() {
+        let q = match b {
+            Block::Planar(g) => quality::quality2d(g),
+            Block::Surface(g) => quality::quality_surface(g),
+            Block::Volume(_) => {
+                println!("block {}: volume block ({:?}): no volume quality yet", k + 1, b.dims());
+                continue;
+            }
+        };
+        println!("block {} ({} × {}):", k + 1, b.dims()[0], b.dims()[1]);
+        println!("{q}");
+        reports.push((format!("block{}", k + 1), q));
+    }
+    if let Some(r) = report {
+        let v: Vec<serde_json::Value> = reports
+            .iter()
+            .map(|(n, q)| serde_json::json!({ "name": n, "quality": q }))
+            .collect();
+        write_json(r, &serde_json::json!({ "grid": grid.display().to_string(), "blocks": v }))?;
+    }
+    let folded: Vec<&(String, QualityReport)> =
+        reports.iter().filter(|(_, q)| q.is_folded()).collect();
+    if let Some((name, q)) = folded.first() {
+        return Err(Error::Folded {
+            place: format!("{}: {name}", grid.display()),
+            count: q.folded_cells,
+            first: q
+                .first_folded
+                .iter()
+                .map(|c| format!("cell ({}, {})", c[0], c[1]))
+                .collect::<Vec<_>>()
+                .join(", "),
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,58 @@
+//! Human-readable output of a run: the Picard history and the quality table per block.
+
+use ellipgrid::job::{BlockReport, RunReport};
+
+/// Prints a block's Picard history and quality report.
+pub fn block(b: &BlockReport) {
+    let p = &b.picard;
+    println!(
+        "block '{}' ({} × {} nodes): {} Picard steps ({}), {}, {:.3} s",
+        b.name,
+        b.ni,
+        b.nj,
+        p.steps,
+        p.linear_solver,
+        if p.converged {
+            "converged".to_string()
+        } else {
+            format!("NOT converged to {:.1e}", p.tolerance)
+        },
+        b.seconds
+    );
+    println!("  step   max update   residual[24]   linear its   linear res");
+    for (k, s) in p.history.iter().enumerate() {
+        let its = s
+            .linear_iterations
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join("/");
+        let lres = s.linear_residual.iter().cloned().fold(0.0f64, f64::max);
+        println!(
+            "  {:>4}   {:>10.3e}   {:>12.3e}   {:>10}   {:>10.2e}",
+            k + 1,
+            s.update,
+            s.residual,
+            its,
+            lres
+        );
+    }
+    println!("  final residual[24] {:.3e}", p.final_residual);
+    println!("{}", b.quality);
+}
+
+/// Warns about blocks whose Picard iteration did not converge.
+pub fn not_converged(r: &RunReport) {
+    for b in &r.blocks {
+        if !b.picard.converged {
+            eprintln!(
+                "warning: block '{}': Picard iteration stopped after {} steps at update {:.3e} \
+                 (tolerance {:.1e})",
+                b.name,
+                b.picard.steps,
+                b.picard.history.last().map_or(f64::NAN, |s| s.update),
+                b.picard.tolerance
+            );
+        }
+    }
+}

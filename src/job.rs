@@ -1,0 +1,244 @@
+//! Runs a case: grids every block, measures its quality and writes the outputs.
+//!
+//! Generation and writing are separate so that a folded grid can be reported without any
+//! output file being written.
+
+use crate::case::LoadedCase;
+use crate::domain::grid_block;
+use crate::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
+use crate::io::{vtk, Block};
+use crate::linsolve;
+use crate::poisson2d::PicardInfo;
+use crate::quality::{self, QualityReport};
+use crate::{Error, Result};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Report of one block: the solve history and the quality of the grid.
+#[derive(Clone, Debug, Serialize)]
+pub struct BlockReport {
+    pub name: String,
+    pub ni: usize,
+    pub nj: usize,
+    /// Wall-clock seconds of the block's generation.
+    pub seconds: f64,
+    pub picard: PicardInfo,
+    pub quality: QualityReport,
+}
+
+/// Report of a whole run (what `--report` writes as JSON).
+#[derive(Clone, Debug, Serialize)]
+pub struct RunReport {
+    pub case: String,
+    pub blocks: Vec<BlockReport>,
+    /// Files written (empty if nothing was written).
+    pub outputs: Vec<String>,
+}
+
+impl RunReport {
+    /// The first folded block, if any, as an error naming the cells.
+    pub fn fold_error(&self) -> Option<Error> {
+        self.blocks.iter().find(|b| b.quality.is_folded()).map(|b| Error::Folded {
+            place: format!("{}: block '{}'", self.case, b.name),
+            count: b.quality.folded_cells,
+            first: b
+                .quality
+                .first_folded
+                .iter()
+                .map(|c| format!("cell ({}, {})", c[0], c[1]))
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+    }
+}
+
+/// The grids of a case with their report.
+pub struct Generated {
+    pub blocks: Vec<(String, Block)>,
+    pub report: RunReport,
+}
+
+/// Grids every block of a case. `progress` receives a line per finished block.
+pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Result<Generated> {
+    let spec = &case.case;
+    let mut blocks = Vec::new();
+    let mut reports = Vec::new();
+    for k in 0..spec.blocks.len() {
+        let t0 = Instant::now();
+        let place = case.block_place(k);
+        let boundary = case.planar_boundary(k)?;
+        let mut solver = linsolve::by_name(&spec.solver.linear)
+            .map_err(|m| Error::input(format!("{}: [solver]", case.path.display()), m))?;
+        let r = grid_block(
+            &boundary,
+            None,
+            spec.solver.control,
+            solver.as_mut(),
+            &spec.solver.picard,
+            &place,
+        )?;
+        let quality = quality::quality2d(&r.grid);
+        let rep = BlockReport {
+            name: case.block_name(k),
+            ni: r.grid.ni(),
+            nj: r.grid.nj(),
+            seconds: t0.elapsed().as_secs_f64(),
+            picard: r.picard,
+            quality,
+        };
+        progress(&rep);
+        reports.push(rep);
+        blocks.push((case.block_name(k), Block::Planar(r.grid)));
+    }
+    Ok(Generated {
+        blocks,
+        report: RunReport {
+            case: case.path.display().to_string(),
+            blocks: reports,
+            outputs: vec![],
+        },
+    })
+}
+
+/// The Plot3D flavour asked for by `[output]`.
+pub fn plot3d_format(case: &LoadedCase) -> Result<Plot3dFormat> {
+    let o = &case.case.output;
+    let at = format!("{}: [output]", case.path.display());
+    let mut f = Plot3dFormat {
+        two_d: true,
+        ..Plot3dFormat::default()
+    };
+    if let Some(e) = &o.encoding {
+        f.encoding = match e.as_str() {
+            "unformatted" => Encoding::Unformatted,
+            "formatted" => Encoding::Formatted,
+            "stream" => Encoding::Stream,
+            _ => {
+                return Err(Error::input(
+                    at,
+                    format!("encoding '{e}': expected unformatted, formatted or stream"),
+                ))
+            }
+        };
+    }
+    if let Some(p) = &o.precision {
+        f.precision = match p.as_str() {
+            "double" => Precision::Double,
+            "single" => Precision::Single,
+            _ => {
+                return Err(Error::input(
+                    at,
+                    format!("precision '{p}': expected double or single"),
+                ))
+            }
+        };
+    }
+    f.byte_order = ByteOrder::Little;
+    if let Some(m) = o.multi_block {
+        f.multi_block = m;
+    }
+    if let Some(t) = o.two_d {
+        f.two_d = t;
+    }
+    Ok(f)
+}
+
+/// What kind of file a path names, by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputKind {
+    Plot3d,
+    Vts,
+    Vtm,
+}
+
+/// The output kind of a path, or an error listing the known extensions.
+pub fn output_kind(path: &Path) -> Result<OutputKind> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .unwrap_or_default();
+    match ext.as_str() {
+        "x" | "xyz" | "p3d" | "g" | "grd" => Ok(OutputKind::Plot3d),
+        "vts" => Ok(OutputKind::Vts),
+        "vtm" => Ok(OutputKind::Vtm),
+        _ => Err(Error::input(
+            path.display().to_string(),
+            "unknown output extension: use .x/.xyz/.p3d/.g (Plot3D), .vts or .vtm (VTK)",
+        )),
+    }
+}
+
+/// Cell quality fields of a block for VTK output.
+fn cell_fields(b: &Block) -> Vec<(&'static str, Vec<f64>)> {
+    match b {
+        Block::Planar(g) => quality::cell_fields2d(g),
+        Block::Surface(g) => quality::cell_fields_surface(g),
+        Block::Volume(_) => vec![],
+    }
+}
+
+/// Writes blocks to `paths` (each atomically). Returns the files written.
+pub fn write_outputs(
+    blocks: &[(String, Block)],
+    paths: &[PathBuf],
+    fmt: &Plot3dFormat,
+) -> Result<Vec<PathBuf>> {
+    // Check every path first, so that a bad name late in the list writes nothing.
+    let kinds = paths
+        .iter()
+        .map(|p| output_kind(p))
+        .collect::<Result<Vec<_>>>()?;
+    let mut written = Vec::new();
+    for (path, kind) in paths.iter().zip(kinds) {
+        match kind {
+            OutputKind::Plot3d => {
+                let only: Vec<Block> = blocks.iter().map(|(_, b)| b.clone()).collect();
+                let mut f = fmt.clone();
+                if only.len() > 1 {
+                    f.multi_block = true;
+                }
+                if only.iter().any(|b| !matches!(b, Block::Planar(_))) {
+                    f.two_d = false;
+                }
+                plot3d::write_plot3d(path, &only, &f, None)?;
+                written.push(path.clone());
+            }
+            OutputKind::Vts => {
+                if blocks.len() != 1 {
+                    return Err(Error::input(
+                        path.display().to_string(),
+                        format!("{} blocks do not fit one .vts file: use .vtm", blocks.len()),
+                    ));
+                }
+                write_vts_block(path, &blocks[0].1)?;
+                written.push(path.clone());
+            }
+            OutputKind::Vtm => {
+                let stem = path
+                    .file_stem()
+                    .and_then(|s| s.to_str())
+                    .unwrap_or("grid")
+                    .to_string();
+                let dir = path.parent().unwrap_or(Path::new(""));
+                let mut pieces = Vec::new();
+                for (k, (name, b)) in blocks.iter().enumerate() {
+                    let file = PathBuf::from(format!("{stem}_{}_{name}.vts", k + 1));
+                    write_vts_block(&dir.join(&file), b)?;
+                    written.push(dir.join(&file));
+                    pieces.push((name.clone(), file));
+                }
+                vtk::write_vtm(path, &pieces)?;
+                written.push(path.clone());
+            }
+        }
+    }
+    Ok(written)
+}
+
+fn write_vts_block(path: &Path, b: &Block) -> Result<()> {
+    let fields = cell_fields(b);
+    let cd: Vec<(&str, &[f64])> = fields.iter().map(|(n, v)| (*n, v.as_slice())).collect();
+    vtk::write_vts(path, b, &cd, &[])
+}

@@ -1,0 +1,48 @@
+//! Shared helpers of the integration tests: running the binary, temporary case files.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Runs the `ellipgrid` binary with `args` in `dir`.
+pub fn ellipgrid(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ellipgrid"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the ellipgrid binary runs")
+}
+
+/// stdout + stderr of a run, for messages in assertions.
+pub fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// The repository root (for the shipped examples).
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A case file with one block of four edges given as TOML tables.
+pub fn one_block_case(ni: usize, nj: usize, e1: &str, e2: &str, e3: &str, e4: &str) -> String {
+    format!(
+        "[[block]]\nname = \"b\"\nni = {ni}\nnj = {nj}\n[block.E1]\n{e1}\n[block.E2]\n{e2}\n\
+         [block.E3]\n{e3}\n[block.E4]\n{e4}\n"
+    )
+}
+
+/// A unit-square case with uniform edges.
+pub fn square_case(ni: usize, nj: usize) -> String {
+    one_block_case(
+        ni,
+        nj,
+        "curve = { type = \"line\", from = [0, 0], to = [0, 1] }",
+        "curve = { type = \"line\", from = [1, 0], to = [1, 1] }",
+        "curve = { type = \"line\", from = [0, 0], to = [1, 0] }",
+        "curve = { type = \"line\", from = [0, 1], to = [1, 1] }",
+    )
+}
