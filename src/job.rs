@@ -101,6 +101,17 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
     })
 }
 
+/// The algebraic (transfinite) start grids of every block, as the Picard iteration sees them
+/// (they may fold: the final grid does not depend on them).
+pub fn start_grids(case: &LoadedCase) -> Result<Vec<(String, Block)>> {
+    (0..case.case.blocks.len())
+        .map(|k| {
+            let b = case.planar_boundary(k)?;
+            Ok((case.block_name(k), Block::Planar(crate::transform::transfinite(&b))))
+        })
+        .collect()
+}
+
 /// The Plot3D flavour asked for by `[output]`.
 pub fn plot3d_format(case: &LoadedCase) -> Result<Plot3dFormat> {
     let o = &case.case.output;

@@ -37,6 +37,9 @@ enum Command {
         /// Write the grid even if it folds (the exit code is still 3).
         #[arg(long)]
         allow_folded: bool,
+        /// Also write the algebraic start grid of every block (it may fold) to this file.
+        #[arg(long, value_name = "START")]
+        write_start: Option<PathBuf>,
         /// Print only errors.
         #[arg(short, long)]
         quiet: bool,
@@ -60,8 +63,16 @@ pub fn main() -> ExitCode {
             output,
             report,
             allow_folded,
+            write_start,
             quiet,
-        } => run(&case, &output, report.as_deref(), allow_folded, quiet),
+        } => run(
+            &case,
+            &output,
+            report.as_deref(),
+            write_start.as_deref(),
+            allow_folded,
+            quiet,
+        ),
         Command::Check { grid, report } => check(&grid, report.as_deref()),
     };
     match r {
@@ -83,6 +94,7 @@ fn run(
     case_path: &Path,
     output: &[PathBuf],
     report: Option<&Path>,
+    write_start: Option<&Path>,
     allow_folded: bool,
     quiet: bool,
 ) -> Result<()> {
@@ -102,6 +114,15 @@ fn run(
         job::output_kind(p)?;
     }
     let fmt = job::plot3d_format(&case)?;
+    if let Some(p) = write_start {
+        job::output_kind(p)?;
+        let written = job::write_outputs(&job::start_grids(&case)?, &[p.to_path_buf()], &fmt)?;
+        if !quiet {
+            for p in &written {
+                println!("wrote start grid {}", p.display());
+            }
+        }
+    }
     let mut gen = job::generate(&case, |b| {
         if !quiet {
             print::block(b);

@@ -1,0 +1,54 @@
+//! Grids that fold: exit code 3, a report naming the folded cells, and no grid file unless
+//! `--allow-folded`; `check` flags folded grids read from Plot3D.
+
+mod common;
+use common::*;
+use ellipgrid::io::plot3d::{write_plot3d, Plot3dFormat};
+use ellipgrid::io::Block;
+use ellipgrid::Grid2;
+use std::fs;
+
+/// A coarse block whose roof has a narrow notch reaching almost to the floor: with 5 × 3 nodes
+/// the interior nodes cannot be placed without folding cells next to the notch.
+fn folding_case() -> String {
+    one_block_case(
+        5,
+        3,
+        "curve = { type = \"line\", from = [0, 0], to = [0, 2] }",
+        "curve = { type = \"line\", from = [4, 0], to = [4, 2] }",
+        "curve = { type = \"line\", from = [0, 0], to = [4, 0] }",
+        "curve = { type = \"nodes\", points = [[0, 2], [2.0, 0.02], [2.02, 1.99], [3, 1.99], [4, 2]] }",
+    )
+}
+
+#[test]
+fn a_folded_result_exits_3_and_writes_no_grid() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("fold.toml"), folding_case()).unwrap();
+    let o = ellipgrid(d.path(), &["run", "fold.toml", "-o", "g.x", "--report", "r.json"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(3), "{t}");
+    assert!(t.contains("folds") && t.contains("cell ("), "{t}");
+    assert!(!d.path().join("g.x").exists());
+    let r: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
+    assert!(r["blocks"][0]["quality"]["folded_cells"].as_u64().unwrap() > 0);
+    assert!(r["outputs"].as_array().unwrap().is_empty());
+    // --allow-folded writes it, still with exit code 3
+    let o = ellipgrid(d.path(), &["run", "fold.toml", "-o", "g.x", "--allow-folded"]);
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    assert!(d.path().join("g.x").exists());
+}
+
+#[test]
+fn check_flags_a_folded_plot3d_grid() {
+    let d = tempfile::tempdir().unwrap();
+    let mut g = Grid2::<2>::from_fn(5, 4, |i, j| [i as f64, j as f64]);
+    g.set(2, 1, [2.0, 2.5]); // pushed across its upper neighbour
+    let path = d.path().join("f.x");
+    write_plot3d(&path, &[Block::Planar(g)], &Plot3dFormat::default(), None).unwrap();
+    let o = ellipgrid(d.path(), &["check", "f.x", "--report", "q.json"]);
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    assert!(text(&o).contains("cell ("));
+    assert!(d.path().join("q.json").exists());
+}
