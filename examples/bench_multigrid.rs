@@ -47,7 +47,9 @@ fn geometric(cells: usize, d1: f64) -> Vec<f64> {
 /// Finite-volume Laplacian on a boundary-layer grid of `nodes²` nodes: x uniform on
 /// `[0, lx]`, y clustered at the wall y = 0 with first spacing `d1`.
 fn boundary_layer(nodes: usize, d1: f64, lx: f64) -> Stencil9 {
-    let xs: Vec<f64> = (0..nodes).map(|i| lx * i as f64 / (nodes - 1) as f64).collect();
+    let xs: Vec<f64> = (0..nodes)
+        .map(|i| lx * i as f64 / (nodes - 1) as f64)
+        .collect();
     let ys = geometric(nodes - 1, d1);
     let n = nodes - 2;
     let mut a = Stencil9::zeros(n, n);

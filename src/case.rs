@@ -173,7 +173,10 @@ pub enum DistributionSpec {
     /// Geometric growth from the first spacing.
     Geometric { first: f64 },
     /// Vinokur's one- or two-sided stretching hitting the given spacings exactly.
-    Vinokur { first: Option<f64>, last: Option<f64> },
+    Vinokur {
+        first: Option<f64>,
+        last: Option<f64>,
+    },
 }
 
 /// A case file read from disk, with its folder for relative input paths.
@@ -226,10 +229,18 @@ impl LoadedCase {
         if b.ni < 3 || b.nj < 3 {
             return Err(Error::input(
                 &place,
-                format!("ni = {}, nj = {}: a block needs at least 3 nodes each way", b.ni, b.nj),
+                format!(
+                    "ni = {}, nj = {}: a block needs at least 3 nodes each way",
+                    b.ni, b.nj
+                ),
             ));
         }
-        let edges = [(Edge::E1, &b.e1), (Edge::E2, &b.e2), (Edge::E3, &b.e3), (Edge::E4, &b.e4)];
+        let edges = [
+            (Edge::E1, &b.e1),
+            (Edge::E2, &b.e2),
+            (Edge::E3, &b.e3),
+            (Edge::E4, &b.e4),
+        ];
         let mut pts: [Vec<[f64; 2]>; 4] = Default::default();
         for (e, spec) in edges {
             let n = if e.runs_along_i() { b.ni } else { b.nj };
@@ -264,7 +275,10 @@ impl LoadedCase {
             if p.len() != n {
                 return Err(Error::input(
                     at,
-                    format!("{} nodes given but the block needs {n} on this edge", p.len()),
+                    format!(
+                        "{} nodes given but the block needs {n} on this edge",
+                        p.len()
+                    ),
                 ));
             }
             if spec.reverse {
@@ -282,7 +296,10 @@ impl LoadedCase {
             if v.is_finite() && v > 0.0 {
                 Ok(v / len)
             } else {
-                Err(Error::input(at, format!("{name} spacing must be positive, got {v}")))
+                Err(Error::input(
+                    at,
+                    format!("{name} spacing must be positive, got {v}"),
+                ))
             }
         };
         let dist = match &spec.distribution {
@@ -298,12 +315,18 @@ impl LoadedCase {
         let sigma = dist.sample(n).map_err(geo_err)?;
         // `first` belongs to the edge's first node; a reversed edge starts at the curve's end,
         // so node k sits at curve arclength 1 − σ_k.
+        let at_sigma = |sig: &[f64]| -> Vec<Vec3> {
+            map.params(sig)
+                .into_iter()
+                .map(|u| curve.point(u))
+                .collect()
+        };
         let p = if spec.reverse {
-            let mut p = geo::sample(curve.as_ref(), &geo::reverse(&sigma));
+            let mut p = at_sigma(&geo::reverse(&sigma));
             p.reverse();
             p
         } else {
-            geo::sample(curve.as_ref(), &sigma)
+            at_sigma(&sigma)
         };
         Ok(p)
     }
@@ -424,7 +447,10 @@ fn point(v: &[f64], at: &str, what: &str) -> Result<Vec3> {
         }
     };
     if p.iter().any(|c| !c.is_finite()) {
-        return Err(Error::input(at, format!("{what}: coordinate is not finite")));
+        return Err(Error::input(
+            at,
+            format!("{what}: coordinate is not finite"),
+        ));
     }
     Ok(p)
 }

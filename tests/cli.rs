@@ -18,7 +18,16 @@ fn examples_run_fold_free_and_converge() {
         let case = root().join(format!("examples/{ex}.toml"));
         let o = ellipgrid(
             d.path(),
-            &["run", case.to_str().unwrap(), "-o", "g.x", "-o", "g.vts", "--report", "r.json"],
+            &[
+                "run",
+                case.to_str().unwrap(),
+                "-o",
+                "g.x",
+                "-o",
+                "g.vts",
+                "--report",
+                "r.json",
+            ],
         );
         assert!(o.status.success(), "{ex}: {}", text(&o));
         assert!(d.path().join("g.x").exists() && d.path().join("g.vts").exists());
@@ -68,7 +77,10 @@ fn rectangle_case_is_exact_through_the_cli() {
 fn rejects(case: &str, needles: &[&str]) {
     let d = tmp();
     fs::write(d.path().join("bad.toml"), case).unwrap();
-    let o = ellipgrid(d.path(), &["run", "bad.toml", "-o", "out.x", "--report", "r.json"]);
+    let o = ellipgrid(
+        d.path(),
+        &["run", "bad.toml", "-o", "out.x", "--report", "r.json"],
+    );
     let t = text(&o);
     assert_eq!(o.status.code(), Some(2), "{t}");
     for n in needles {
@@ -95,27 +107,58 @@ fn bad_inputs_exit_2_with_a_message_and_no_output() {
     // malformed TOML
     rejects("[[block]\nni = 3", &["bad.toml"]);
     // unknown key
-    rejects(&square_case(5, 5).replace("ni = 5", "ni = 5\nnj_typo = 3"), &["bad.toml", "nj_typo"]);
+    rejects(
+        &square_case(5, 5).replace("ni = 5", "ni = 5\nnj_typo = 3"),
+        &["bad.toml", "nj_typo"],
+    );
     // too few points
     rejects(&square_case(2, 5), &["block 'b'", "at least 3"]);
     // edges that do not meet
     rejects(
-        &one_block_case(5, 5, E1, "curve = { type = \"line\", from = [1, 0], to = [1.5, 1] }", E3, E4),
+        &one_block_case(
+            5,
+            5,
+            E1,
+            "curve = { type = \"line\", from = [1, 0], to = [1.5, 1] }",
+            E3,
+            E4,
+        ),
         &["block 'b'", "do not meet"],
     );
     // mismatched point count on a `nodes` edge
     rejects(
-        &one_block_case(5, 5, "curve = { type = \"nodes\", points = [[0, 0], [0, 0.5], [0, 1]] }", E2, E3, E4),
+        &one_block_case(
+            5,
+            5,
+            "curve = { type = \"nodes\", points = [[0, 0], [0, 0.5], [0, 1]] }",
+            E2,
+            E3,
+            E4,
+        ),
         &["block 'b', edge E1", "3 nodes given", "needs 5"],
     );
     // NaN coordinate
     rejects(
-        &one_block_case(5, 5, E1, E2, "curve = { type = \"line\", from = [0, 0], to = [nan, 0] }", E4),
+        &one_block_case(
+            5,
+            5,
+            E1,
+            E2,
+            "curve = { type = \"line\", from = [0, 0], to = [nan, 0] }",
+            E4,
+        ),
         &["edge E3", "not finite"],
     );
     // zero-length edge
     rejects(
-        &one_block_case(5, 5, E1, E2, "curve = { type = \"line\", from = [0, 0], to = [0, 0] }", E4),
+        &one_block_case(
+            5,
+            5,
+            E1,
+            E2,
+            "curve = { type = \"line\", from = [0, 0], to = [0, 0] }",
+            E4,
+        ),
         &["edge E3", "zero length"],
     );
     // self-intersecting boundary: E4 dips below E3
@@ -132,7 +175,14 @@ fn bad_inputs_exit_2_with_a_message_and_no_output() {
     );
     // impossible distribution
     rejects(
-        &one_block_case(5, 5, E1, E2, &format!("{E3}\ndistribution = {{ type = \"vinokur\", first = 2.0 }}"), E4),
+        &one_block_case(
+            5,
+            5,
+            E1,
+            E2,
+            &format!("{E3}\ndistribution = {{ type = \"vinokur\", first = 2.0 }}"),
+            E4,
+        ),
         &["edge E3"],
     );
     // unknown output extension
@@ -154,7 +204,11 @@ fn bad_inputs_exit_2_with_a_message_and_no_output() {
 #[test]
 fn help_on_every_subcommand() {
     let d = tmp();
-    for args in [vec!["--help"], vec!["run", "--help"], vec!["check", "--help"]] {
+    for args in [
+        vec!["--help"],
+        vec!["run", "--help"],
+        vec!["check", "--help"],
+    ] {
         let o = ellipgrid(d.path(), &args);
         assert!(o.status.success());
         assert!(text(&o).contains("Usage"));

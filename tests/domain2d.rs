@@ -22,14 +22,31 @@ fn with_size(mut case: LoadedCase, ni: usize, nj: usize) -> LoadedCase {
 }
 
 fn solve(b: &Boundary2<2>, start: Option<Grid2<2>>, kind: ControlKind) -> Grid2<2> {
-    let r = grid_block(b, start, kind, &mut DirectLu::new(), &PicardParams::default(), "t").unwrap();
-    assert!(r.picard.converged, "Picard did not converge: {:?}", r.picard.history.last());
+    let r = grid_block(
+        b,
+        start,
+        kind,
+        &mut DirectLu::new(),
+        &PicardParams::default(),
+        "t",
+    )
+    .unwrap();
+    assert!(
+        r.picard.converged,
+        "Picard did not converge: {:?}",
+        r.picard.history.last()
+    );
     r.grid
 }
 
 fn max_diff(a: &Grid2<2>, b: &Grid2<2>) -> f64 {
     (0..2)
-        .flat_map(|c| a.coord(c).iter().zip(b.coord(c)).map(|(u, v)| (u - v).abs()))
+        .flat_map(|c| {
+            a.coord(c)
+                .iter()
+                .zip(b.coord(c))
+                .map(|(u, v)| (u - v).abs())
+        })
         .fold(0.0, f64::max)
 }
 
@@ -37,8 +54,12 @@ fn max_diff(a: &Grid2<2>, b: &Grid2<2>) -> f64 {
 fn rectangle_with_equal_opposite_distributions_is_reproduced_exactly() {
     // Stretched, different distributions in i and j, equal on opposite edges: the
     // tensor-product grid is an exact discrete solution (Thomas–Middlecoff, [25]–[28]).
-    let xs: Vec<f64> = (0..41).map(|k| 3.0 * (1.0 - (k as f64 / 40.0 * 1.3).cos()) / (1.0 - 1.3f64.cos())).collect();
-    let ys: Vec<f64> = (0..23).map(|k| 0.5 * ((k as f64 / 22.0) * 3.0).exp_m1() / 3.0f64.exp_m1()).collect();
+    let xs: Vec<f64> = (0..41)
+        .map(|k| 3.0 * (1.0 - (k as f64 / 40.0 * 1.3).cos()) / (1.0 - 1.3f64.cos()))
+        .collect();
+    let ys: Vec<f64> = (0..23)
+        .map(|k| 0.5 * ((k as f64 / 22.0) * 3.0).exp_m1() / 3.0f64.exp_m1())
+        .collect();
     let exact = Grid2::<2>::from_fn(41, 23, |i, j| [xs[i], ys[j]]);
     let b = Boundary2::from_grid(&exact, "rect").unwrap();
     let g = solve(&b, None, ControlKind::Algebraic);
@@ -53,7 +74,9 @@ fn final_grid_does_not_depend_on_a_folded_start_grid() {
     // A severely folded start: interior nodes scrambled pseudo-randomly over the domain.
     let mut seed = 12345u64;
     let mut rnd = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (seed >> 11) as f64 / (1u64 << 53) as f64
     };
     let folded = Grid2::<2>::from_fn(b.ni(), b.nj(), |i, j| {
@@ -65,7 +88,11 @@ fn final_grid_does_not_depend_on_a_folded_start_grid() {
         }
     });
     let q = quality2d(&folded);
-    assert!(q.folded_cells > b.ni() * b.nj() / 4, "start grid not folded enough: {}", q.folded_cells);
+    assert!(
+        q.folded_cells > b.ni() * b.nj() / 4,
+        "start grid not folded enough: {}",
+        q.folded_cells
+    );
     let g1 = solve(&b, Some(folded), ControlKind::Algebraic);
     let g2 = solve(&b, None, ControlKind::Algebraic);
     let d = max_diff(&g1, &g2) / g2.diameter();
@@ -81,13 +108,20 @@ fn curved_domain_converges_at_second_order() {
         .iter()
         .map(|&(ni, nj)| {
             let case = with_size(load("examples/curved.toml"), ni, nj);
-            solve(&case.planar_boundary(0).unwrap(), None, ControlKind::Algebraic)
+            solve(
+                &case.planar_boundary(0).unwrap(),
+                None,
+                ControlKind::Algebraic,
+            )
         })
         .collect();
     let coarse = &grids[0];
     let rms_diff = |a: &Grid2<2>, b: &Grid2<2>| {
         // sample both at the nodes of the coarsest grid
-        let (ra, rb) = ((a.ni() - 1) / (coarse.ni() - 1), (b.ni() - 1) / (coarse.ni() - 1));
+        let (ra, rb) = (
+            (a.ni() - 1) / (coarse.ni() - 1),
+            (b.ni() - 1) / (coarse.ni() - 1),
+        );
         let mut s = 0.0;
         for j in 0..coarse.nj() {
             for i in 0..coarse.ni() {
@@ -125,10 +159,17 @@ fn boundary_layer_survives_and_a_laplace_grid_loses_it() {
     let g = solve(&b, None, ControlKind::Algebraic);
     let h = first_heights(&g);
     let worst = h.iter().map(|v| (v / 1e-4 - 1.0).abs()).fold(0.0, f64::max);
-    assert!(worst < 0.2, "first-cell height off by {:.1} % somewhere", 100.0 * worst);
+    assert!(
+        worst < 0.2,
+        "first-cell height off by {:.1} % somewhere",
+        100.0 * worst
+    );
     assert_eq!(quality2d(&g).folded_cells, 0);
     let lap = solve(&b, None, ControlKind::Laplace);
     let hl = first_heights(&lap);
     let mid = hl[hl.len() / 2];
-    assert!(mid > 10.0 * 1e-4, "the Laplace grid kept the layer: height {mid:.2e}");
+    assert!(
+        mid > 10.0 * 1e-4,
+        "the Laplace grid kept the layer: height {mid:.2e}"
+    );
 }

@@ -25,7 +25,10 @@ fn folding_case() -> String {
 fn a_folded_result_exits_3_and_writes_no_grid() {
     let d = tempfile::tempdir().unwrap();
     fs::write(d.path().join("fold.toml"), folding_case()).unwrap();
-    let o = ellipgrid(d.path(), &["run", "fold.toml", "-o", "g.x", "--report", "r.json"]);
+    let o = ellipgrid(
+        d.path(),
+        &["run", "fold.toml", "-o", "g.x", "--report", "r.json"],
+    );
     let t = text(&o);
     assert_eq!(o.status.code(), Some(3), "{t}");
     assert!(t.contains("folds") && t.contains("cell ("), "{t}");
@@ -35,7 +38,10 @@ fn a_folded_result_exits_3_and_writes_no_grid() {
     assert!(r["blocks"][0]["quality"]["folded_cells"].as_u64().unwrap() > 0);
     assert!(r["outputs"].as_array().unwrap().is_empty());
     // --allow-folded writes it, still with exit code 3
-    let o = ellipgrid(d.path(), &["run", "fold.toml", "-o", "g.x", "--allow-folded"]);
+    let o = ellipgrid(
+        d.path(),
+        &["run", "fold.toml", "-o", "g.x", "--allow-folded"],
+    );
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     assert!(d.path().join("g.x").exists());
 }
