@@ -48,12 +48,7 @@ impl Control2 {
                 let (tx, ty, txx, txy, tyy) = d(t);
                 let det = sx * ty - sy * tx;
                 // T⁻¹ = (1/det) [ty −sy; −tx sx]
-                let solve = |a: f64, b: f64| {
-                    [
-                        -(ty * a - sy * b) / det,
-                        -(-tx * a + sx * b) / det,
-                    ]
-                };
+                let solve = |a: f64, b: f64| [-(ty * a - sy * b) / det, -(-tx * a + sx * b) / det];
                 let p11 = solve(sxx, txx);
                 let p12 = solve(sxy, txy);
                 let p22 = solve(syy, tyy);
@@ -112,8 +107,8 @@ mod tests {
         let ty = 0.5 * (t[j + 1] - t[j - 1]);
         assert!((q[0] + sxx / sx).abs() < 1e-14);
         assert!((q[5] + tyy / ty).abs() < 1e-14);
-        for k in 1..5 {
-            assert!(q[k].abs() < 1e-14);
+        for v in &q[1..5] {
+            assert!(v.abs() < 1e-14);
         }
     }
 }

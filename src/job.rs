@@ -39,18 +39,29 @@ pub struct RunReport {
 impl RunReport {
     /// The first folded block, if any, as an error naming the cells.
     pub fn fold_error(&self) -> Option<Error> {
-        self.blocks.iter().find(|b| b.quality.is_folded()).map(|b| Error::Folded {
-            place: format!("{}: block '{}'", self.case, b.name),
-            count: b.quality.folded_cells,
-            first: b
-                .quality
-                .first_folded
-                .iter()
-                .map(|c| format!("cell ({}, {})", c[0], c[1]))
-                .collect::<Vec<_>>()
-                .join(", "),
-        })
+        self.blocks
+            .iter()
+            .find(|b| b.quality.is_folded())
+            .map(|b| Error::Folded {
+                place: format!("{}: block '{}'", self.case, b.name),
+                count: b.quality.folded_cells,
+                first: b
+                    .quality
+                    .first_folded
+                    .iter()
+                    .map(|c| format!("cell ({}, {})", c[0], c[1]))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })
     }
+}
+
+/// "cell (i, j), …" for messages about folded cells.
+pub fn cell_list(c: &[[usize; 2]]) -> String {
+    c.iter()
+        .map(|c| format!("cell ({}, {})", c[0], c[1]))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The grids of a case with their report.
@@ -107,7 +118,10 @@ pub fn start_grids(case: &LoadedCase) -> Result<Vec<(String, Block)>> {
     (0..case.case.blocks.len())
         .map(|k| {
             let b = case.planar_boundary(k)?;
-            Ok((case.block_name(k), Block::Planar(crate::transform::transfinite(&b))))
+            Ok((
+                case.block_name(k),
+                Block::Planar(crate::transform::transfinite(&b)),
+            ))
         })
         .collect()
 }
@@ -206,7 +220,7 @@ pub fn write_outputs(
         match kind {
             OutputKind::Plot3d => {
                 let only: Vec<Block> = blocks.iter().map(|(_, b)| b.clone()).collect();
-                let mut f = fmt.clone();
+                let mut f = *fmt;
                 if only.len() > 1 {
                     f.multi_block = true;
                 }

@@ -12,6 +12,7 @@ pub mod linsolve;
 pub mod multigrid;
 pub mod poisson2d;
 pub mod quality;
+pub mod smooth;
 pub mod stencil;
 pub mod transform;
 

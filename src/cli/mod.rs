@@ -8,7 +8,9 @@ use ellipgrid::case::LoadedCase;
 use ellipgrid::io::plot3d;
 use ellipgrid::io::Block;
 use ellipgrid::job;
+use ellipgrid::poisson2d::PicardParams;
 use ellipgrid::quality::{self, QualityReport};
+use ellipgrid::smooth::{smooth_blocks, SmoothOptions};
 use ellipgrid::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -44,6 +46,36 @@ enum Command {
         #[arg(short, long)]
         quiet: bool,
     },
+    /// Keep the boundary nodes of existing blocks and regrid their interiors elliptically.
+    ///
+    /// Planar blocks (and surface blocks with z = const) by the Poisson system of Section 2,
+    /// curved surface blocks by the minimal-surface system of Section 3. Unselected blocks pass
+    /// through unchanged; the output has the input's Plot3D flavour.
+    Smooth {
+        /// The input grid (Plot3D, any flavour).
+        input: PathBuf,
+        /// The output grid (.x/.xyz/.p3d/.g Plot3D in the input's flavour, or .vts/.vtm).
+        #[arg(short, long = "output", value_name = "OUT", required = true)]
+        output: Vec<PathBuf>,
+        /// Regrid only these blocks (1-based, comma separated), e.g. `--blocks 1,3`.
+        #[arg(long, value_delimiter = ',', value_name = "K,..")]
+        blocks: Option<Vec<usize>>,
+        /// Linear solver of each Picard step: "direct" or "multigrid".
+        #[arg(long, default_value = "direct")]
+        linear: String,
+        /// Picard tolerance (max node update / block diameter).
+        #[arg(long, default_value_t = 1e-10)]
+        tolerance: f64,
+        /// Write the report (per block: method, start grid, Picard history, quality) as JSON.
+        #[arg(long, value_name = "FILE.json")]
+        report: Option<PathBuf>,
+        /// Write the grid even if a regridded block folds (the exit code is still 3).
+        #[arg(long)]
+        allow_folded: bool,
+        /// Print only errors.
+        #[arg(short, long)]
+        quiet: bool,
+    },
     /// Print the quality report of every block of a Plot3D grid file (exit 3 if any folds).
     Check {
         /// The grid file (Plot3D, any flavour: autodetected).
@@ -74,6 +106,34 @@ pub fn main() -> ExitCode {
             quiet,
         ),
         Command::Check { grid, report } => check(&grid, report.as_deref()),
+        Command::Smooth {
+            input,
+            output,
+            blocks,
+            linear,
+            tolerance,
+            report,
+            allow_folded,
+            quiet,
+        } => {
+            let opts = SmoothOptions {
+                blocks,
+                linear,
+                picard: PicardParams {
+                    tolerance,
+                    ..PicardParams::default()
+                },
+                ..SmoothOptions::default()
+            };
+            smooth(
+                &input,
+                &output,
+                &opts,
+                report.as_deref(),
+                allow_folded,
+                quiet,
+            )
+        }
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,
@@ -150,6 +210,68 @@ fn run(
     }
 }
 
+fn smooth(
+    input: &Path,
+    output: &[PathBuf],
+    opts: &SmoothOptions,
+    report: Option<&Path>,
+    allow_folded: bool,
+    quiet: bool,
+) -> Result<()> {
+    for p in output {
+        job::output_kind(p)?;
+    }
+    let file = plot3d::read_plot3d(input)?;
+    let name = input.display().to_string();
+    let (blocks, reports) = smooth_blocks(&file.blocks, &name, opts)?;
+    if !quiet {
+        for r in &reports {
+            print::smoothed(r);
+        }
+    }
+    let fold = reports
+        .iter()
+        .find(|r| r.quality.is_folded())
+        .map(|r| Error::Folded {
+            place: format!("{name}: block {}", r.block),
+            count: r.quality.folded_cells,
+            first: job::cell_list(&r.quality.first_folded),
+        });
+    let mut written = Vec::new();
+    if fold.is_none() || allow_folded {
+        for p in output {
+            if job::output_kind(p)? == job::OutputKind::Plot3d {
+                let ib = file.iblank.as_deref();
+                plot3d::write_plot3d(p, &blocks, &file.format, ib)?;
+                written.push(p.clone());
+            } else {
+                let named: Vec<(String, Block)> = blocks
+                    .iter()
+                    .enumerate()
+                    .map(|(k, b)| (format!("block{}", k + 1), b.clone()))
+                    .collect();
+                written.extend(job::write_outputs(&named, &[p.clone()], &file.format)?);
+            }
+        }
+        if !quiet {
+            for p in &written {
+                println!("wrote {}", p.display());
+            }
+        }
+    }
+    if let Some(r) = report {
+        let out: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+        write_json(
+            r,
+            &serde_json::json!({ "input": name, "blocks": reports, "outputs": out }),
+        )?;
+    }
+    match fold {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
 fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
     let file = plot3d::read_plot3d(grid)?;
     let mut reports: Vec<(String, QualityReport)> = Vec::new();
@@ -158,7 +280,11 @@ fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
             Block::Planar(g) => quality::quality2d(g),
             Block::Surface(g) => quality::quality_surface(g),
             Block::Volume(_) => {
-                println!("block {}: volume block ({:?}): no volume quality yet", k + 1, b.dims());
+                println!(
+                    "block {}: volume block ({:?}): no volume quality yet",
+                    k + 1,
+                    b.dims()
+                );
                 continue;
             }
         };
@@ -171,7 +297,10 @@ fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
             .iter()
             .map(|(n, q)| serde_json::json!({ "name": n, "quality": q }))
             .collect();
-        write_json(r, &serde_json::json!({ "grid": grid.display().to_string(), "blocks": v }))?;
+        write_json(
+            r,
+            &serde_json::json!({ "grid": grid.display().to_string(), "blocks": v }),
+        )?;
     }
     let folded: Vec<&(String, QualityReport)> =
         reports.iter().filter(|(_, q)| q.is_folded()).collect();
@@ -179,12 +308,7 @@ fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
         return Err(Error::Folded {
             place: format!("{}: {name}", grid.display()),
             count: q.folded_cells,
-            first: q
-                .first_folded
-                .iter()
-                .map(|c| format!("cell ({}, {})", c[0], c[1]))
-                .collect::<Vec<_>>()
-                .join(", "),
+            first: job::cell_list(&q.first_folded),
         });
     }
     Ok(())

@@ -1,23 +1,40 @@
 //! Human-readable output of a run: the Picard history and the quality table per block.
 
 use ellipgrid::job::{BlockReport, RunReport};
+use ellipgrid::poisson2d::PicardInfo;
+use ellipgrid::smooth::SmoothReport;
+
+/// Prints what `smooth` did to a block.
+pub fn smoothed(r: &SmoothReport) {
+    println!(
+        "block {}: {} system, start from the {}",
+        r.block, r.method, r.start
+    );
+    history(&r.picard);
+    println!("{}", r.quality);
+}
 
 /// Prints a block's Picard history and quality report.
 pub fn block(b: &BlockReport) {
-    let p = &b.picard;
     println!(
-        "block '{}' ({} × {} nodes): {} Picard steps ({}), {}, {:.3} s",
-        b.name,
-        b.ni,
-        b.nj,
+        "block '{}' ({} × {} nodes), {:.3} s",
+        b.name, b.ni, b.nj, b.seconds
+    );
+    history(&b.picard);
+    println!("{}", b.quality);
+}
+
+/// Prints a Picard history.
+pub fn history(p: &PicardInfo) {
+    println!(
+        "  {} Picard steps ({}), {}",
         p.steps,
         p.linear_solver,
         if p.converged {
             "converged".to_string()
         } else {
             format!("NOT converged to {:.1e}", p.tolerance)
-        },
-        b.seconds
+        }
     );
     println!("  step   max update   residual[24]   linear its   linear res");
     for (k, s) in p.history.iter().enumerate() {
@@ -38,7 +55,6 @@ pub fn block(b: &BlockReport) {
         );
     }
     println!("  final residual[24] {:.3e}", p.final_residual);
-    println!("{}", b.quality);
 }
 
 /// Warns about blocks whose Picard iteration did not converge.

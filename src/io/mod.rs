@@ -1,0 +1,185 @@
+//! Grid file output and input: Plot3D (every "whole" flavour, read with autodetection) and VTK
+//! XML (`.vts` per block, `.vtm` for a multi-block set). All writers are atomic: a file at the
+//! target path is either the complete new output or untouched.
+
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use crate::{Error, Grid2, Grid3, Result};
+
+pub mod plot3d;
+pub mod vtk;
+
+/// One structured block as stored in a grid file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Block {
+    /// A planar 2D grid (x, y).
+    Planar(Grid2<2>),
+    /// A surface grid in R³ (one layer of nodes, nk = 1).
+    Surface(Grid2<3>),
+    /// A volume grid.
+    Volume(Grid3),
+}
+
+impl Block {
+    /// Node counts (ni, nj, nk); nk = 1 for planar and surface grids.
+    pub fn dims(&self) -> [usize; 3] {
+        match self {
+            Block::Planar(g) => [g.ni(), g.nj(), 1],
+            Block::Surface(g) => [g.ni(), g.nj(), 1],
+            Block::Volume(g) => g.dims(),
+        }
+    }
+
+    /// Number of coordinate components stored: 2 for planar grids, 3 otherwise.
+    pub fn ncoords(&self) -> usize {
+        match self {
+            Block::Planar(_) => 2,
+            Block::Surface(_) | Block::Volume(_) => 3,
+        }
+    }
+
+    /// Number of nodes, ni·nj·nk.
+    pub fn nnodes(&self) -> usize {
+        self.dims().iter().product()
+    }
+
+    /// Coordinate array of component `c` (0 = x, 1 = y, 2 = z), i fastest.
+    ///
+    /// # Panics
+    /// If `c >= self.ncoords()`.
+    pub fn coord(&self, c: usize) -> &[f64] {
+        match self {
+            Block::Planar(g) => g.coord(c),
+            Block::Surface(g) => g.coord(c),
+            Block::Volume(g) => g.coord(c),
+        }
+    }
+
+    /// Short name of the block kind, for messages.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Block::Planar(_) => "planar",
+            Block::Surface(_) => "surface",
+            Block::Volume(_) => "volume",
+        }
+    }
+}
+
+impl From<Grid2<2>> for Block {
+    fn from(g: Grid2<2>) -> Self {
+        Block::Planar(g)
+    }
+}
+
+impl From<Grid2<3>> for Block {
+    fn from(g: Grid2<3>) -> Self {
+        Block::Surface(g)
+    }
+}
+
+impl From<Grid3> for Block {
+    fn from(g: Grid3) -> Self {
+        Block::Volume(g)
+    }
+}
+
+/// Writes a file atomically: `f` writes (buffered) into a temporary file in the directory of
+/// `path`, which is renamed onto `path` only after `f` and the flush succeeded. On any error the
+/// temporary file is removed and `path` is left untouched, so readers never see partial output.
+pub fn write_atomic(
+    path: &Path,
+    f: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    let err = |e| Error::io(path, e);
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".ellipgrid-").suffix(".tmp");
+    // NamedTempFile defaults to mode 0600; output files should get the usual 0666 & !umask.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let tmp = builder.tempfile_in(dir).map_err(err)?;
+    let mut w = BufWriter::new(tmp);
+    f(&mut w).map_err(err)?;
+    let tmp = w.into_inner().map_err(|e| err(e.into_error()))?;
+    tmp.as_file().sync_all().map_err(err)?;
+    tmp.persist(path).map_err(|e| err(e.error))?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn block_dims_and_coords() {
+        let p = Block::from(Grid2::<2>::from_fn(3, 2, |i, j| [i as f64, j as f64]));
+        assert_eq!(p.dims(), [3, 2, 1]);
+        assert_eq!(p.ncoords(), 2);
+        assert_eq!(p.nnodes(), 6);
+        assert_eq!(p.coord(1), &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+        let v = Block::from(Grid3::zeros(2, 3, 4));
+        assert_eq!(v.dims(), [2, 3, 4]);
+        assert_eq!(v.ncoords(), 3);
+        assert_eq!(v.kind(), "volume");
+    }
+
+    #[test]
+    fn write_atomic_writes_and_replaces() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.txt");
+        write_atomic(&path, |w| w.write_all(b"first")).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"first");
+        write_atomic(&path, |w| w.write_all(b"second")).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"second");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+            assert_ne!(
+                mode & 0o044,
+                0,
+                "output should be readable by others: {mode:o}"
+            );
+        }
+    }
+
+    #[test]
+    fn write_atomic_failure_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.txt");
+        let r = write_atomic(&path, |w| {
+            w.write_all(&[7u8; 100_000])?;
+            Err(std::io::Error::other("boom"))
+        });
+        let e = r.unwrap_err().to_string();
+        assert!(e.contains("out.txt") && e.contains("boom"), "{e}");
+        assert!(!path.exists());
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "temp file left behind"
+        );
+
+        // An existing file is left untouched by a failed rewrite.
+        std::fs::write(&path, b"old").unwrap();
+        assert!(write_atomic(&path, |_| Err(std::io::Error::other("boom"))).is_err());
+        assert_eq!(std::fs::read(&path).unwrap(), b"old");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn write_atomic_bad_directory_is_an_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("missing").join("out.txt");
+        let e = write_atomic(&path, |w| w.write_all(b"x")).unwrap_err();
+        assert!(e.to_string().contains("out.txt"), "{e}");
+    }
+}

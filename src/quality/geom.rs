@@ -1,0 +1,250 @@
+//! Geometric kernels shared by planar and surface grids: node access in R³, cell normals,
+//! corner Jacobians and angles, the neighbour-flip test, NaN-propagating min/max.
+
+use crate::Grid2;
+
+/// A point or vector in R³ (planar grids use z = 0).
+pub(super) type V3 = [f64; 3];
+
+#[inline]
+pub(super) fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline]
+pub(super) fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline]
+pub(super) fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline]
+pub(super) fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Minimum that returns NaN if either argument is NaN (`f64::min` would hide it).
+#[inline]
+pub(super) fn nmin(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.min(b)
+    }
+}
+
+/// Maximum that returns NaN if either argument is NaN.
+#[inline]
+pub(super) fn nmax(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
+}
+
+/// Ratio of two spacings inverted to be ≥ 1: 1 if both are zero, ∞ if only one is.
+#[inline]
+pub(super) fn growth_ratio(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        return f64::NAN;
+    }
+    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+    if hi == 0.0 {
+        1.0
+    } else {
+        hi / lo // lo = 0 gives ∞
+    }
+}
+
+/// Angle in degrees in [0°, 180°] between two vectors (0° if either has zero length).
+#[inline]
+pub(super) fn angle_deg(a: V3, b: V3) -> f64 {
+    norm(cross(a, b)).atan2(dot(a, b)).to_degrees()
+}
+
+/// Read-only view of a grid's nodes as points of R³; the one place where planar and surface
+/// grids differ is [`Nodes::normal`].
+pub(super) struct Nodes<'a> {
+    x: &'a [f64],
+    y: &'a [f64],
+    z: Option<&'a [f64]>,
+    pub ni: usize,
+    pub nj: usize,
+    /// True for a surface grid (D = 3): cell normals from the diagonals, neighbour-flip test.
+    pub surface: bool,
+}
+
+impl<'a> Nodes<'a> {
+    /// View of a planar (D = 2) or surface (D = 3) grid.
+    pub fn new<const D: usize>(g: &'a Grid2<D>) -> Self {
+        debug_assert!(D == 2 || D == 3);
+        Nodes {
+            x: g.coord(0),
+            y: g.coord(1),
+            z: (D >= 3).then(|| g.coord(2)),
+            ni: g.ni(),
+            nj: g.nj(),
+            surface: D >= 3,
+        }
+    }
+
+    /// Number of cells, 0 for grids smaller than 2 × 2.
+    pub fn cells(&self) -> usize {
+        if self.ni < 2 || self.nj < 2 {
+            0
+        } else {
+            (self.ni - 1) * (self.nj - 1)
+        }
+    }
+
+    /// Node (i, j).
+    #[inline]
+    pub fn p(&self, i: usize, j: usize) -> V3 {
+        let k = i + self.ni * j;
+        [self.x[k], self.y[k], self.z.map_or(0.0, |z| z[k])]
+    }
+
+    /// Nodes of cell (i, j) counter-clockwise in (ξ, η): (i,j), (i+1,j), (i+1,j+1), (i,j+1).
+    #[inline]
+    pub fn cell(&self, i: usize, j: usize) -> [V3; 4] {
+        [
+            self.p(i, j),
+            self.p(i + 1, j),
+            self.p(i + 1, j + 1),
+            self.p(i, j + 1),
+        ]
+    }
+
+    /// Reference normal of a cell: +z for planar grids; for surfaces the normalised cross
+    /// product of the diagonals (x₂ − x₀) × (x₃ − x₁), the zero vector if that vanishes.
+    #[inline]
+    pub fn normal(&self, c: &[V3; 4]) -> V3 {
+        if !self.surface {
+            return [0.0, 0.0, 1.0];
+        }
+        let m = cross(sub(c[2], c[0]), sub(c[3], c[1]));
+        let l = norm(m);
+        if l > 0.0 && l.is_finite() {
+            [m[0] / l, m[1] / l, m[2] / l]
+        } else if l.is_nan() {
+            [f64::NAN; 3]
+        } else {
+            [0.0; 3]
+        }
+    }
+
+    /// Surface fold by normal flip: more than half of the edge neighbours of cell (i, j) with a
+    /// non-degenerate normal point against its normal `n`. Catches a cell turned over as a whole,
+    /// whose corners are all positive relative to its own (also turned) normal.
+    pub fn flipped(&self, i: usize, j: usize, n: V3) -> bool {
+        let (mut counted, mut against) = (0usize, 0usize);
+        let mut look = |ii: usize, jj: usize| {
+            let m = self.normal(&self.cell(ii, jj));
+            if m != [0.0; 3] {
+                counted += 1;
+                if dot(n, m) < 0.0 {
+                    against += 1;
+                }
+            }
+        };
+        if i > 0 {
+            look(i - 1, j);
+        }
+        if i + 2 < self.ni {
+            look(i + 1, j);
+        }
+        if j > 0 {
+            look(i, j - 1);
+        }
+        if j + 2 < self.nj {
+            look(i, j + 1);
+        }
+        2 * against > counted
+    }
+}
+
+/// Raw corner Jacobians ((x_{k+1} − x_k) × (x_{k−1} − x_k)) · n of a cell, k = 0..3.
+#[inline]
+pub(super) fn corner_jacobians(c: &[V3; 4], n: V3) -> [f64; 4] {
+    std::array::from_fn(|k| {
+        let a = sub(c[(k + 1) % 4], c[k]);
+        let b = sub(c[(k + 3) % 4], c[k]);
+        dot(cross(a, b), n)
+    })
+}
+
+/// Metrics of one cell, Jacobians relative to the orientation sign `s` (±1).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct CellEval {
+    /// Smallest corner Jacobian.
+    pub jmin: f64,
+    /// Largest corner Jacobian.
+    pub jmax: f64,
+    /// Smallest scaled corner Jacobian J / (|a| |b|), 0 at a corner with a zero-length edge.
+    pub smin: f64,
+    /// Equiangular skewness max[(θmax − 90°)/90°, (90° − θmin)/90°].
+    pub skew: f64,
+    /// Longest / shortest edge (∞ with a zero-length edge).
+    pub aspect: f64,
+}
+
+/// Evaluates a cell with reference normal `n` and orientation sign `s`.
+///
+/// The corner angle is measured in the plane normal to `n`, signed by the corner Jacobian and
+/// taken in [0°, 360°): a reflex (non-convex or folded) corner has θ > 180°, so the skewness of
+/// such a cell exceeds 1. A zero-length edge gives θ = 0° (skewness 1).
+#[inline]
+pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64) -> CellEval {
+    let e: [V3; 4] = std::array::from_fn(|k| sub(c[(k + 1) % 4], c[k]));
+    let l: [f64; 4] = std::array::from_fn(|k| norm(e[k]));
+    let (mut jmin, mut jmax, mut smin) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+    let (mut tmin, mut tmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in 0..4 {
+        let a = e[k];
+        let p = e[(k + 3) % 4];
+        let b = [-p[0], -p[1], -p[2]];
+        let jac = s * dot(cross(a, b), n);
+        let ll = l[k] * l[(k + 3) % 4];
+        let scaled = if ll == 0.0 {
+            0.0
+        } else {
+            (jac / ll).clamp(-1.0, 1.0)
+        };
+        // In-plane cosine part: a·b minus the components along n.
+        let c_ab = dot(a, b) - dot(a, n) * dot(b, n);
+        let mut theta = jac.atan2(c_ab).to_degrees();
+        if theta < 0.0 {
+            theta += 360.0;
+        }
+        jmin = nmin(jmin, jac);
+        jmax = nmax(jmax, jac);
+        smin = nmin(smin, scaled);
+        tmin = nmin(tmin, theta);
+        tmax = nmax(tmax, theta);
+    }
+    let skew = nmax((tmax - 90.0) / 90.0, (90.0 - tmin) / 90.0);
+    let lmax = l.iter().fold(0.0, |m: f64, &v| nmax(m, v));
+    let lmin = l.iter().fold(f64::INFINITY, |m: f64, &v| nmin(m, v));
+    let aspect = if lmin > 0.0 {
+        lmax / lmin
+    } else if lmin == 0.0 {
+        f64::INFINITY
+    } else {
+        f64::NAN
+    };
+    CellEval {
+        jmin,
+        jmax,
+        smin,
+        skew,
+        aspect,
+    }
+}

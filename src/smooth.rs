@@ -1,0 +1,187 @@
+//! Elliptic regridding of existing blocks: keep every boundary node bit for bit, regrid the
+//! interior by the paper's method. Planar blocks (and surface blocks lying in a plane
+//! z = const) by the Section 2 Poisson system; curved surface blocks by the minimal-surface
+//! system of Section 3 (the same system [24] with x ∈ R³: the boundary alone defines them).
+
+use crate::boundary::Boundary2;
+use crate::domain::{grid_block, ControlKind};
+use crate::grid::Grid2;
+use crate::io::Block;
+use crate::linsolve;
+use crate::poisson2d::{PicardInfo, PicardParams};
+use crate::quality::{quality2d, quality_surface, QualityReport};
+use crate::{Error, Result};
+use serde::Serialize;
+
+/// Options of a smoothing run.
+#[derive(Clone, Debug)]
+pub struct SmoothOptions {
+    /// 1-based indices of the blocks to regrid; `None`: all.
+    pub blocks: Option<Vec<usize>>,
+    /// Linear solver name ("direct", "multigrid").
+    pub linear: String,
+    /// Control functions.
+    pub control: ControlKind,
+    /// Picard parameters.
+    pub picard: PicardParams,
+}
+
+impl Default for SmoothOptions {
+    fn default() -> Self {
+        SmoothOptions {
+            blocks: None,
+            linear: "direct".into(),
+            control: ControlKind::Algebraic,
+            picard: PicardParams::default(),
+        }
+    }
+}
+
+/// What was done to one block.
+#[derive(Clone, Debug, Serialize)]
+pub struct SmoothReport {
+    /// 1-based block index.
+    pub block: usize,
+    /// "planar", "planar (z = const)" or "minimal surface".
+    pub method: String,
+    /// "existing interior" if the input interior was a valid start grid, else "transfinite".
+    pub start: String,
+    pub picard: PicardInfo,
+    pub quality: QualityReport,
+}
+
+/// Regrids the selected blocks of `blocks` (read from `file`, used in messages). Unselected
+/// blocks are returned unchanged.
+pub fn smooth_blocks(
+    blocks: &[Block],
+    file: &str,
+    opts: &SmoothOptions,
+) -> Result<(Vec<Block>, Vec<SmoothReport>)> {
+    if let Some(sel) = &opts.blocks {
+        if let Some(&k) = sel.iter().find(|&&k| k == 0 || k > blocks.len()) {
+            return Err(Error::input(
+                file,
+                format!(
+                    "--blocks: block {k} does not exist (the file has {})",
+                    blocks.len()
+                ),
+            ));
+        }
+    }
+    let mut out = Vec::with_capacity(blocks.len());
+    let mut reports = Vec::new();
+    for (k, b) in blocks.iter().enumerate() {
+        let selected = opts.blocks.as_ref().is_none_or(|s| s.contains(&(k + 1)));
+        if !selected {
+            out.push(b.clone());
+            continue;
+        }
+        let place = format!("{file}: block {}", k + 1);
+        let (nb, rep) = match b {
+            Block::Planar(g) => {
+                let (g2, picard, start) = regrid(g, opts, &place)?;
+                let q = quality2d(&g2);
+                (
+                    Block::Planar(g2),
+                    (String::from("planar"), start, picard, q),
+                )
+            }
+            Block::Surface(g) if is_flat(g) => {
+                let flat = Grid2::<2>::from_coords(
+                    g.ni(),
+                    g.nj(),
+                    [g.coord(0).to_vec(), g.coord(1).to_vec()],
+                );
+                let (g2, picard, start) = regrid(&flat, opts, &place)?;
+                let q = quality2d(&g2);
+                let [x, y] = g2.coords().clone();
+                let s = Grid2::<3>::from_coords(g.ni(), g.nj(), [x, y, g.coord(2).to_vec()]);
+                (
+                    Block::Surface(s),
+                    ("planar (z = const)".into(), start, picard, q),
+                )
+            }
+            Block::Surface(g) => {
+                let (g2, picard, start) = regrid(g, opts, &place)?;
+                let q = quality_surface(&g2);
+                (
+                    Block::Surface(g2),
+                    ("minimal surface".into(), start, picard, q),
+                )
+            }
+            Block::Volume(_) => {
+                return Err(Error::input(
+                    place,
+                    "volume blocks cannot be smoothed yet (3D grids need the Section 5 \
+                     solver); select planar or surface blocks with --blocks",
+                ))
+            }
+        };
+        out.push(nb);
+        reports.push(SmoothReport {
+            block: k + 1,
+            method: rep.0,
+            start: rep.1,
+            picard: rep.2,
+            quality: rep.3,
+        });
+    }
+    Ok((out, reports))
+}
+
+/// True if every z is the same value.
+fn is_flat(g: &Grid2<3>) -> bool {
+    let z = g.coord(2);
+    z.iter().all(|&v| v == z[0])
+}
+
+/// Regrids one block with its own boundary; the interior is the start grid if it is valid.
+fn regrid<const D: usize>(
+    g: &Grid2<D>,
+    opts: &SmoothOptions,
+    place: &str,
+) -> Result<(Grid2<D>, PicardInfo, String)> {
+    if !g.all_finite() {
+        return Err(Error::input(place, "the block has non-finite coordinates"));
+    }
+    let b = Boundary2::from_grid(g, place)?;
+    let valid = if D == 2 {
+        let flat =
+            Grid2::<2>::from_coords(g.ni(), g.nj(), [g.coord(0).to_vec(), g.coord(1).to_vec()]);
+        !quality2d(&flat).is_folded()
+    } else {
+        let s =
+            Grid2::<3>::from_coords(g.ni(), g.nj(), std::array::from_fn(|c| g.coord(c).to_vec()));
+        !quality_surface(&s).is_folded()
+    };
+    let start = valid.then(|| g.clone());
+    let mut solver = linsolve::by_name(&opts.linear).map_err(|m| Error::input(place, m))?;
+    let r = grid_block(
+        &b,
+        start,
+        opts.control,
+        solver.as_mut(),
+        &opts.picard,
+        place,
+    )?;
+    // Boundary nodes bit for bit (Boundary2 snaps corners; the grid's own corners are
+    // single nodes, so this only restores what was there).
+    let mut grid = r.grid;
+    copy_boundary(g, &mut grid);
+    let how = if valid {
+        "existing interior"
+    } else {
+        "transfinite"
+    };
+    Ok((grid, r.picard, how.into()))
+}
+
+fn copy_boundary<const D: usize>(from: &Grid2<D>, to: &mut Grid2<D>) {
+    for j in 0..from.nj() {
+        for i in 0..from.ni() {
+            if from.is_boundary(i, j) {
+                to.set(i, j, from.point(i, j));
+            }
+        }
+    }
+}
