@@ -49,7 +49,11 @@ impl EdgeFunctions {
 
     /// Uniform edge functions (the identity map; gives zero control functions).
     pub fn uniform(ni: usize, nj: usize) -> Self {
-        let u = |n: usize| (0..n).map(|k| k as f64 / (n - 1) as f64).collect::<Vec<_>>();
+        let u = |n: usize| {
+            (0..n)
+                .map(|k| k as f64 / (n - 1) as f64)
+                .collect::<Vec<_>>()
+        };
         EdgeFunctions {
             s_e3: u(ni),
             s_e4: u(ni),

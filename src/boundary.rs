@@ -19,7 +19,11 @@ pub struct Boundary2<const D: usize> {
 }
 
 fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
-    a.iter().zip(b).map(|(u, v)| (u - v) * (u - v)).sum::<f64>().sqrt()
+    a.iter()
+        .zip(b)
+        .map(|(u, v)| (u - v) * (u - v))
+        .sum::<f64>()
+        .sqrt()
 }
 
 impl<const D: usize> Boundary2<D> {
@@ -98,7 +102,10 @@ impl<const D: usize> Boundary2<D> {
                     "the edge has zero length",
                 ));
             }
-            if let Some(k) = pts.windows(2).position(|w| dist(&w[0], &w[1]) <= 1e-14 * diam) {
+            if let Some(k) = pts
+                .windows(2)
+                .position(|w| dist(&w[0], &w[1]) <= 1e-14 * diam)
+            {
                 return Err(Error::input(
                     format!("{place}, edge {e}"),
                     format!("points {k} and {} coincide", k + 1),
@@ -173,7 +180,14 @@ impl<const D: usize> Boundary2<D> {
         }
         let bb: Vec<[f64; 4]> = segs
             .iter()
-            .map(|(a, b, _, _)| [a[0].min(b[0]), a[0].max(b[0]), a[1].min(b[1]), a[1].max(b[1])])
+            .map(|(a, b, _, _)| {
+                [
+                    a[0].min(b[0]),
+                    a[0].max(b[0]),
+                    a[1].min(b[1]),
+                    a[1].max(b[1]),
+                ]
+            })
             .collect();
         let mut order: Vec<usize> = (0..segs.len()).collect();
         order.sort_by(|&a, &b| bb[a][0].total_cmp(&bb[b][0]));
@@ -243,10 +257,7 @@ fn bbox_diameter<'a, const D: usize>(pts: impl Iterator<Item = &'a [f64; D]>) ->
             hi[c] = hi[c].max(p[c]);
         }
     }
-    (0..D)
-        .map(|c| (hi[c] - lo[c]).powi(2))
-        .sum::<f64>()
-        .sqrt()
+    (0..D).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
 }
 
 #[cfg(test)]
@@ -287,6 +298,9 @@ mod tests {
         let m = Boundary2::new(e, "blk").unwrap_err().to_string();
         assert!(m.contains("coincide"), "{m}");
         let e = unit_square(2);
-        assert!(Boundary2::new(e, "blk").unwrap_err().to_string().contains("at least 3"));
+        assert!(Boundary2::new(e, "blk")
+            .unwrap_err()
+            .to_string()
+            .contains("at least 3"));
     }
 }

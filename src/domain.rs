@@ -63,7 +63,9 @@ mod tests {
     #[test]
     fn rectangle_with_equal_opposite_distributions_is_exact() {
         let xs: Vec<f64> = (0..9).map(|k| 2.0 * (k as f64 / 8.0).powf(1.5)).collect();
-        let ys: Vec<f64> = (0..7).map(|k| ((k as f64 / 6.0) * 1.2).sinh() / 1.2f64.sinh()).collect();
+        let ys: Vec<f64> = (0..7)
+            .map(|k| ((k as f64 / 6.0) * 1.2).sinh() / 1.2f64.sinh())
+            .collect();
         let exact = Grid2::<2>::from_fn(9, 7, |i, j| [xs[i], ys[j]]);
         let b = Boundary2::from_grid(&exact, "rect").unwrap();
         let r = grid_block(

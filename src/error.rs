@@ -76,7 +76,10 @@ impl Error {
     /// Process exit code: 2 for bad input, 3 for a folded grid, 4 for a solver failure.
     pub fn exit_code(&self) -> u8 {
         match self {
-            Error::Input { .. } | Error::Io { .. } | Error::Format { .. } | Error::Geometry { .. } => 2,
+            Error::Input { .. }
+            | Error::Io { .. }
+            | Error::Format { .. }
+            | Error::Geometry { .. } => 2,
             Error::Folded { .. } => 3,
             Error::Solve { .. } => 4,
         }

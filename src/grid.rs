@@ -213,7 +213,11 @@ impl Grid3 {
     /// If an array does not hold `ni * nj * nk` values.
     pub fn from_coords(ni: usize, nj: usize, nk: usize, coords: [Vec<f64>; 3]) -> Self {
         for c in &coords {
-            assert_eq!(c.len(), ni * nj * nk, "coordinate array length must be ni*nj*nk");
+            assert_eq!(
+                c.len(),
+                ni * nj * nk,
+                "coordinate array length must be ni*nj*nk"
+            );
         }
         Grid3 { ni, nj, nk, coords }
     }

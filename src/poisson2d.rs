@@ -202,7 +202,10 @@ pub fn solve<const D: usize>(
         return Err(Error::input(place, "a block needs at least 3 × 3 nodes"));
     }
     if (ctrl.ni(), ctrl.nj()) != (ni, nj) {
-        return Err(Error::input(place, "control functions and grid differ in size"));
+        return Err(Error::input(
+            place,
+            "control functions and grid differ in size",
+        ));
     }
     if !ctrl.all_finite() {
         return Err(Error::input(

@@ -33,8 +33,7 @@ fn triplets(a: &Stencil9) -> Vec<Triplet<usize, usize, f64>> {
                 for di in 0..3usize {
                     let v = a.row(i, j)[di + 3 * dj];
                     let (ii, jj) = ((i + di) as isize - 1, (j + dj) as isize - 1);
-                    if v != 0.0 && ii >= 0 && jj >= 0 && (ii as usize) < nx && (jj as usize) < ny
-                    {
+                    if v != 0.0 && ii >= 0 && jj >= 0 && (ii as usize) < nx && (jj as usize) < ny {
                         t.push(Triplet::new(p, ii as usize + nx * jj as usize, v));
                     }
                 }
@@ -49,13 +48,20 @@ impl LinearSolver for DirectLu {
         let n = a.len();
         let m = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets(a))
             .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
-        let lu = m.sp_lu().map_err(|e| SolveError::Singular(format!("{e:?}")))?;
+        let lu = m
+            .sp_lu()
+            .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
         self.lu = Some(lu);
         self.n = n;
         Ok(())
     }
 
-    fn solve(&self, b: &[f64], x: &mut [f64], _ctl: &SolveControl) -> Result<SolveInfo, SolveError> {
+    fn solve(
+        &self,
+        b: &[f64],
+        x: &mut [f64],
+        _ctl: &SolveControl,
+    ) -> Result<SolveInfo, SolveError> {
         let lu = self.lu.as_ref().ok_or(SolveError::NotSetUp)?;
         assert_eq!(b.len(), self.n);
         x.copy_from_slice(b);
@@ -85,7 +91,17 @@ mod tests {
         let (nx, ny) = (7, 5);
         let mut a = Stencil9::zeros(nx, ny);
         for (p, row) in a.coefs_mut().iter_mut().enumerate() {
-            *row = [-0.25, -1.0, -0.1, -1.2, 5.0 + p as f64 * 0.01, -0.8, -0.1, -1.0, -0.25];
+            *row = [
+                -0.25,
+                -1.0,
+                -0.1,
+                -1.2,
+                5.0 + p as f64 * 0.01,
+                -0.8,
+                -0.1,
+                -1.0,
+                -0.25,
+            ];
         }
         a.clip_to_grid();
         let xe: Vec<f64> = (0..nx * ny).map(|p| (p as f64 * 0.37).sin()).collect();
