@@ -76,6 +76,10 @@ impl Default for SolverSpec {
 pub struct BlockSpec {
     /// Name used in messages and outputs (default "block<k>").
     pub name: Option<String>,
+    /// What the block is: "planar" (default; Section 2), "minimal" (a soap film spanned by
+    /// four 3D edges; Section 3) or "surface" (a grid on a parametrized surface; Section 4).
+    #[serde(default)]
+    pub kind: BlockKind,
     /// Nodes along i (on E3 and E4).
     pub ni: usize,
     /// Nodes along j (on E1 and E2).
@@ -88,6 +92,19 @@ pub struct BlockSpec {
     pub e3: EdgeSpec,
     #[serde(rename = "E4")]
     pub e4: EdgeSpec,
+}
+
+/// The kind of a block.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BlockKind {
+    /// A planar domain: edges in the xy-plane, the Poisson system of Section 2.
+    #[default]
+    Planar,
+    /// A minimal surface spanned by four 3D edges: the same system with x ∈ R³ (Section 3).
+    Minimal,
+    /// A parametrized surface gridded by Laplace–Beltrami and inversion (Section 4).
+    Surface,
 }
 
 /// One edge: a curve, the distribution of nodes along it, and its direction.
@@ -224,6 +241,34 @@ impl LoadedCase {
 
     /// The validated planar boundary of block k.
     pub fn planar_boundary(&self, k: usize) -> Result<Boundary2<2>> {
+        let place = self.block_place(k);
+        let mut pts: [Vec<[f64; 2]>; 4] = Default::default();
+        for (e, p3) in Edge::ALL.into_iter().zip(self.edge_point_lists(k)?) {
+            if let Some(n) = p3.iter().position(|p| p.z != 0.0) {
+                return Err(Error::input(
+                    format!("{place}, edge {e}"),
+                    format!(
+                        "point {n} has z = {} but the block is planar (use kind = \"minimal\" \
+                         for a surface spanned by 3D edges)",
+                        p3[n].z
+                    ),
+                ));
+            }
+            pts[e.index()] = p3.iter().map(|p| [p.x, p.y]).collect();
+        }
+        Boundary2::new(pts, &place)
+    }
+
+    /// The validated 3D boundary of a minimal-surface block k.
+    pub fn minimal_boundary(&self, k: usize) -> Result<Boundary2<3>> {
+        let pts = self
+            .edge_point_lists(k)?
+            .map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
+        Boundary2::new(pts, &self.block_place(k))
+    }
+
+    /// The nodes of the four edges of block k (E1..E4), from their curves.
+    fn edge_point_lists(&self, k: usize) -> Result<[Vec<Vec3>; 4]> {
         let b = &self.case.blocks[k];
         let place = self.block_place(k);
         if b.ni < 3 || b.nj < 3 {
@@ -235,26 +280,12 @@ impl LoadedCase {
                 ),
             ));
         }
-        let edges = [
-            (Edge::E1, &b.e1),
-            (Edge::E2, &b.e2),
-            (Edge::E3, &b.e3),
-            (Edge::E4, &b.e4),
-        ];
-        let mut pts: [Vec<[f64; 2]>; 4] = Default::default();
-        for (e, spec) in edges {
+        let mut out: [Vec<Vec3>; 4] = Default::default();
+        for (e, spec) in Edge::ALL.into_iter().zip([&b.e1, &b.e2, &b.e3, &b.e4]) {
             let n = if e.runs_along_i() { b.ni } else { b.nj };
-            let at = format!("{place}, edge {e}");
-            let p3 = self.edge_points(spec, n, &at)?;
-            if let Some(k) = p3.iter().position(|p| p.z.abs() > 0.0) {
-                return Err(Error::input(
-                    at,
-                    format!("point {k} has z = {} but the block is planar", p3[k].z),
-                ));
-            }
-            pts[e.index()] = p3.iter().map(|p| [p.x, p.y]).collect();
+            out[e.index()] = self.edge_points(spec, n, &format!("{place}, edge {e}"))?;
         }
-        Boundary2::new(pts, &place)
+        Ok(out)
     }
 
     /// The n nodes of one edge.

@@ -3,13 +3,14 @@
 //! Generation and writing are separate so that a folded grid can be reported without any
 //! output file being written.
 
-use crate::case::LoadedCase;
+use crate::case::{BlockKind, LoadedCase};
 use crate::domain::grid_block;
 use crate::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
 use crate::io::{vtk, Block};
 use crate::linsolve;
 use crate::poisson2d::PicardInfo;
 use crate::quality::{self, QualityReport};
+use crate::transform::transfinite;
 use crate::{Error, Result};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -78,29 +79,38 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
     for k in 0..spec.blocks.len() {
         let t0 = Instant::now();
         let place = case.block_place(k);
-        let boundary = case.planar_boundary(k)?;
         let mut solver = linsolve::by_name(&spec.solver.linear)
             .map_err(|m| Error::input(format!("{}: [solver]", case.path.display()), m))?;
-        let r = grid_block(
-            &boundary,
-            None,
-            spec.solver.control,
-            solver.as_mut(),
-            &spec.solver.picard,
-            &place,
-        )?;
-        let quality = quality::quality2d(&r.grid);
+        let (ctrl, params) = (spec.solver.control, &spec.solver.picard);
+        let (block, picard, quality) = match spec.blocks[k].kind {
+            BlockKind::Planar => {
+                let b = case.planar_boundary(k)?;
+                let r = grid_block(&b, None, ctrl, solver.as_mut(), params, &place)?;
+                let q = quality::quality2d(&r.grid);
+                (Block::Planar(r.grid), r.picard, q)
+            }
+            BlockKind::Minimal => {
+                let b = case.minimal_boundary(k)?;
+                let r = grid_block(&b, None, ctrl, solver.as_mut(), params, &place)?;
+                let q = quality::quality_surface(&r.grid);
+                (Block::Surface(r.grid), r.picard, q)
+            }
+            BlockKind::Surface => {
+                return Err(Error::input(place, "surface blocks are not supported yet"));
+            }
+        };
+        let dims = block.dims();
         let rep = BlockReport {
             name: case.block_name(k),
-            ni: r.grid.ni(),
-            nj: r.grid.nj(),
+            ni: dims[0],
+            nj: dims[1],
             seconds: t0.elapsed().as_secs_f64(),
-            picard: r.picard,
+            picard,
             quality,
         };
         progress(&rep);
         reports.push(rep);
-        blocks.push((case.block_name(k), Block::Planar(r.grid)));
+        blocks.push((case.block_name(k), block));
     }
     Ok(Generated {
         blocks,
@@ -117,11 +127,11 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
 pub fn start_grids(case: &LoadedCase) -> Result<Vec<(String, Block)>> {
     (0..case.case.blocks.len())
         .map(|k| {
-            let b = case.planar_boundary(k)?;
-            Ok((
-                case.block_name(k),
-                Block::Planar(crate::transform::transfinite(&b)),
-            ))
+            let start = match case.case.blocks[k].kind {
+                BlockKind::Minimal => Block::Surface(transfinite(&case.minimal_boundary(k)?)),
+                _ => Block::Planar(transfinite(&case.planar_boundary(k)?)),
+            };
+            Ok((case.block_name(k), start))
         })
         .collect()
 }
