@@ -24,8 +24,11 @@ pub struct Case {
     #[serde(default)]
     pub solver: SolverSpec,
     /// The blocks, gridded independently and written in this order.
-    #[serde(rename = "block")]
+    #[serde(rename = "block", default)]
     pub blocks: Vec<BlockSpec>,
+    /// Volume blocks (`[[volume]]`, see `volume::case3d`), written after the blocks.
+    #[serde(rename = "volume", default)]
+    pub volumes: Vec<crate::volume::case3d::VolumeSpec>,
 }
 
 /// `[output]`: files to write and the Plot3D flavour.
@@ -84,6 +87,9 @@ pub struct BlockSpec {
     pub ni: usize,
     /// Nodes along j (on E1 and E2).
     pub nj: usize,
+    /// Edges at which the grid is made orthogonal (Section 2.4), e.g. `["E3"]`; default none.
+    #[serde(default)]
+    pub orthogonal: Vec<String>,
     #[serde(rename = "E1")]
     pub e1: EdgeSpec,
     #[serde(rename = "E2")]
@@ -214,10 +220,10 @@ impl LoadedCase {
     pub fn parse(text: &str, path: &Path) -> Result<Self> {
         let case: Case = toml::from_str(text)
             .map_err(|e| Error::input(path.display().to_string(), e.to_string()))?;
-        if case.blocks.is_empty() {
+        if case.blocks.is_empty() && case.volumes.is_empty() {
             return Err(Error::input(
                 path.display().to_string(),
-                "the case defines no [[block]]",
+                "the case defines no [[block]] or [[volume]]",
             ));
         }
         Ok(LoadedCase {
@@ -237,6 +243,12 @@ impl LoadedCase {
             .name
             .clone()
             .unwrap_or_else(|| format!("block{}", k + 1))
+    }
+
+    /// The `orthogonal` edges of block k as flags E1, E2, E3, E4 (unknown names are errors
+    /// naming the block).
+    pub fn block_orthogonal(&self, k: usize) -> Result<[bool; 4]> {
+        crate::orthogonal::parse_edges(&self.case.blocks[k].orthogonal, &self.block_place(k))
     }
 
     /// The validated planar boundary of block k.
@@ -289,7 +301,7 @@ impl LoadedCase {
     }
 
     /// The n nodes of one edge.
-    fn edge_points(&self, spec: &EdgeSpec, n: usize, at: &str) -> Result<Vec<Vec3>> {
+    pub fn edge_points(&self, spec: &EdgeSpec, n: usize, at: &str) -> Result<Vec<Vec3>> {
         let geo_err = |source| Error::Geometry {
             place: at.to_string(),
             source,

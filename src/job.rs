@@ -4,10 +4,10 @@
 //! output file being written.
 
 use crate::case::{BlockKind, LoadedCase};
-use crate::domain::grid_block;
 use crate::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
-use crate::io::{vtk, Block};
+use crate::io::{gltf, obj, vtk, Block};
 use crate::linsolve;
+use crate::orthogonal::grid_block_with;
 use crate::poisson2d::PicardInfo;
 use crate::quality::{self, QualityReport};
 use crate::transform::transfinite;
@@ -33,6 +33,9 @@ pub struct BlockReport {
 pub struct RunReport {
     pub case: String,
     pub blocks: Vec<BlockReport>,
+    /// Volume blocks (`[[volume]]`), after the blocks.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub volumes: Vec<crate::volume::case3d::VolumeReport>,
     /// Files written (empty if nothing was written).
     pub outputs: Vec<String>,
 }
@@ -53,6 +56,14 @@ impl RunReport {
                     .map(|c| format!("cell ({}, {})", c[0], c[1]))
                     .collect::<Vec<_>>()
                     .join(", "),
+            })
+            .or_else(|| {
+                let v = self.volumes.iter().find(|v| v.quality.is_folded())?;
+                Some(Error::Folded {
+                    place: format!("{}: volume '{}'", self.case, v.name),
+                    count: v.quality.folded_cells,
+                    first: v.quality.folded_list(),
+                })
             })
     }
 }
@@ -82,16 +93,17 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
         let mut solver = linsolve::by_name(&spec.solver.linear)
             .map_err(|m| Error::input(format!("{}: [solver]", case.path.display()), m))?;
         let (ctrl, params) = (spec.solver.control, &spec.solver.picard);
+        let orth = case.block_orthogonal(k)?;
         let (block, picard, quality) = match spec.blocks[k].kind {
             BlockKind::Planar => {
                 let b = case.planar_boundary(k)?;
-                let r = grid_block(&b, None, ctrl, solver.as_mut(), params, &place)?;
+                let r = grid_block_with(&b, None, orth, ctrl, solver.as_mut(), params, &place)?;
                 let q = quality::quality2d(&r.grid);
                 (Block::Planar(r.grid), r.picard, q)
             }
             BlockKind::Minimal => {
                 let b = case.minimal_boundary(k)?;
-                let r = grid_block(&b, None, ctrl, solver.as_mut(), params, &place)?;
+                let r = grid_block_with(&b, None, orth, ctrl, solver.as_mut(), params, &place)?;
                 let q = quality::quality_surface(&r.grid);
                 (Block::Surface(r.grid), r.picard, q)
             }
@@ -112,11 +124,18 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
         reports.push(rep);
         blocks.push((case.block_name(k), block));
     }
+    let mut volumes = Vec::new();
+    for k in 0..spec.volumes.len() {
+        let (name, block, rep) = crate::volume::case3d::generate_volume(case, k)?;
+        volumes.push(rep);
+        blocks.push((name, block));
+    }
     Ok(Generated {
         blocks,
         report: RunReport {
             case: case.path.display().to_string(),
             blocks: reports,
+            volumes,
             outputs: vec![],
         },
     })
@@ -133,6 +152,7 @@ pub fn start_grids(case: &LoadedCase) -> Result<Vec<(String, Block)>> {
             };
             Ok((case.block_name(k), start))
         })
+        .chain((0..case.case.volumes.len()).map(|k| crate::volume::case3d::start_volume(case, k)))
         .collect()
 }
 
@@ -185,6 +205,14 @@ pub enum OutputKind {
     Plot3d,
     Vts,
     Vtm,
+    /// Binary glTF (`.glb`).
+    Glb,
+    /// glTF JSON with a `.bin` beside it.
+    Gltf,
+    /// Wavefront OBJ with a `.mtl` beside it.
+    Obj,
+    /// A picture (`.png` or `.svg`) with the default plot options.
+    Picture,
 }
 
 /// The output kind of a path, or an error listing the known extensions.
@@ -198,9 +226,14 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
         "x" | "xyz" | "p3d" | "g" | "grd" => Ok(OutputKind::Plot3d),
         "vts" => Ok(OutputKind::Vts),
         "vtm" => Ok(OutputKind::Vtm),
+        "glb" => Ok(OutputKind::Glb),
+        "gltf" => Ok(OutputKind::Gltf),
+        "obj" => Ok(OutputKind::Obj),
+        "png" | "svg" => Ok(OutputKind::Picture),
         _ => Err(Error::input(
             path.display().to_string(),
-            "unknown output extension: use .x/.xyz/.p3d/.g (Plot3D), .vts or .vtm (VTK)",
+            "unknown output extension: use .x/.xyz/.p3d/.g (Plot3D), .vts or .vtm (VTK), \
+             .glb/.gltf (glTF), .obj (OBJ), .png/.svg (picture)",
         )),
     }
 }
@@ -210,7 +243,7 @@ fn cell_fields(b: &Block) -> Vec<(&'static str, Vec<f64>)> {
     match b {
         Block::Planar(g) => quality::cell_fields2d(g),
         Block::Surface(g) => quality::cell_fields_surface(g),
-        Block::Volume(_) => vec![],
+        Block::Volume(g) => crate::volume::quality3d::cell_fields3d(g),
     }
 }
 
@@ -265,6 +298,24 @@ pub fn write_outputs(
                     pieces.push((name.clone(), file));
                 }
                 vtk::write_vtm(path, &pieces)?;
+                written.push(path.clone());
+            }
+            OutputKind::Glb => {
+                gltf::write_glb(path, blocks, &gltf::GltfOptions::default())?;
+                written.push(path.clone());
+            }
+            OutputKind::Gltf => {
+                gltf::write_gltf(path, blocks, &gltf::GltfOptions::default())?;
+                written.push(path.with_extension("bin"));
+                written.push(path.clone());
+            }
+            OutputKind::Obj => {
+                obj::write_obj(path, blocks)?;
+                written.push(path.with_extension("mtl"));
+                written.push(path.clone());
+            }
+            OutputKind::Picture => {
+                crate::plot::write_picture(path, blocks, &crate::plot::PlotOptions::default())?;
                 written.push(path.clone());
             }
         }

@@ -1,20 +1,27 @@
 //! ellipgrid: elliptic structured grid generation after Spekreijse & Boerstoel (NLR TP 96338).
 pub mod arclength;
+pub mod blend;
 pub mod boundary;
 pub mod case;
 pub mod control;
 pub mod domain;
 pub mod error;
 pub mod grid;
+pub mod harmonic;
+pub mod inversion;
 pub mod io;
 pub mod job;
 pub mod linsolve;
 pub mod multigrid;
+pub mod orthogonal;
+pub mod plot;
 pub mod poisson2d;
 pub mod quality;
 pub mod smooth;
 pub mod stencil;
+pub mod surfgrid;
 pub mod transform;
+pub mod volume;
 
 pub use error::{Error, Result};
 pub use grid::{Edge, Grid2, Grid3};

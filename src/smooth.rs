@@ -4,12 +4,12 @@
 //! system of Section 3 (the same system [24] with x ∈ R³: the boundary alone defines them).
 
 use crate::boundary::Boundary2;
-use crate::domain::{grid_block, ControlKind};
+use crate::domain::ControlKind;
 use crate::grid::Grid2;
 use crate::io::Block;
 use crate::linsolve;
 use crate::poisson2d::{PicardInfo, PicardParams};
-use crate::quality::{quality2d, quality_surface, QualityReport};
+use crate::quality::{quality2d, quality_surface};
 use crate::{Error, Result};
 use serde::Serialize;
 
@@ -24,6 +24,8 @@ pub struct SmoothOptions {
     pub control: ControlKind,
     /// Picard parameters.
     pub picard: PicardParams,
+    /// Edges made orthogonal (Section 2.4) in every regridded block: flags E1, E2, E3, E4.
+    pub orthogonal: [bool; 4],
 }
 
 impl Default for SmoothOptions {
@@ -33,6 +35,7 @@ impl Default for SmoothOptions {
             linear: "direct".into(),
             control: ControlKind::Algebraic,
             picard: PicardParams::default(),
+            orthogonal: [false; 4],
         }
     }
 }
@@ -47,7 +50,7 @@ pub struct SmoothReport {
     /// "existing interior" if the input interior was a valid start grid, else "transfinite".
     pub start: String,
     pub picard: PicardInfo,
-    pub quality: QualityReport,
+    pub quality: crate::volume::quality3d::AnyQuality,
 }
 
 /// Regrids the selected blocks of `blocks` (read from `file`, used in messages). Unselected
@@ -83,7 +86,7 @@ pub fn smooth_blocks(
                 let q = quality2d(&g2);
                 (
                     Block::Planar(g2),
-                    (String::from("planar"), start, picard, q),
+                    (String::from("planar"), start, picard, q.into()),
                 )
             }
             Block::Surface(g) if is_flat(g) => {
@@ -98,7 +101,7 @@ pub fn smooth_blocks(
                 let s = Grid2::<3>::from_coords(g.ni(), g.nj(), [x, y, g.coord(2).to_vec()]);
                 (
                     Block::Surface(s),
-                    ("planar (z = const)".into(), start, picard, q),
+                    ("planar (z = const)".into(), start, picard, q.into()),
                 )
             }
             Block::Surface(g) => {
@@ -106,15 +109,21 @@ pub fn smooth_blocks(
                 let q = quality_surface(&g2);
                 (
                     Block::Surface(g2),
-                    ("minimal surface".into(), start, picard, q),
+                    ("minimal surface".into(), start, picard, q.into()),
                 )
             }
-            Block::Volume(_) => {
-                return Err(Error::input(
-                    place,
-                    "volume blocks cannot be smoothed yet (3D grids need the Section 5 \
-                     solver); select planar or surface blocks with --blocks",
-                ))
+            Block::Volume(g) => {
+                let (g2, picard, start) = crate::volume::case3d::regrid_volume(
+                    g,
+                    &opts.linear,
+                    opts.control,
+                    &opts.picard,
+                    &place,
+                )?;
+                let q = crate::volume::quality3d(&g2);
+                let method = format!("volume (Section 5, {})", picard.linear_solver);
+                let q = crate::volume::quality3d::AnyQuality::Volume(q);
+                (Block::Volume(g2), (method, start, picard, q))
             }
         };
         out.push(nb);
@@ -156,9 +165,10 @@ fn regrid<const D: usize>(
     };
     let start = valid.then(|| g.clone());
     let mut solver = linsolve::by_name(&opts.linear).map_err(|m| Error::input(place, m))?;
-    let r = grid_block(
+    let r = crate::orthogonal::grid_block_with(
         &b,
         start,
+        opts.orthogonal,
         opts.control,
         solver.as_mut(),
         &opts.picard,

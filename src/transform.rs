@@ -17,6 +17,18 @@ pub struct ParamGrid {
 }
 
 impl ParamGrid {
+    /// A parameter grid from its arrays (i fastest), e.g. the Hermite blend [47]–[49].
+    ///
+    /// # Panics
+    /// If `s` or `t` does not hold `ni * nj` values.
+    pub fn from_parts(ni: usize, nj: usize, s: Vec<f64>, t: Vec<f64>) -> Self {
+        assert!(
+            s.len() == ni * nj && t.len() == ni * nj,
+            "s, t need ni*nj values"
+        );
+        ParamGrid { ni, nj, s, t }
+    }
+
     /// Nodes along i.
     pub fn ni(&self) -> usize {
         self.ni

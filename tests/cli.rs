@@ -188,9 +188,9 @@ fn bad_inputs_exit_2_with_a_message_and_no_output() {
     // unknown output extension
     let d = tmp();
     fs::write(d.path().join("ok.toml"), square_case(5, 5)).unwrap();
-    let o = ellipgrid(d.path(), &["run", "ok.toml", "-o", "out.png"]);
+    let o = ellipgrid(d.path(), &["run", "ok.toml", "-o", "out.xyzzy"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("out.png"));
+    assert!(text(&o).contains("out.xyzzy"));
     // no output named at all
     let o = ellipgrid(d.path(), &["run", "ok.toml"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));

@@ -5,6 +5,8 @@
 //! | [`curve`] | parametric curves in R³ on u ∈ [0, 1], arclength maps | [`Curve`], [`ArclengthMap`], [`sample`] |
 //! | [`distribution`] | normalized point distributions on [0, 1] (METHOD.md [30–38]) | [`Distribution`], [`vinokur`], [`geometric`] |
 //! | [`airfoil`] | Selig / Lednicer `.dat` files | [`read_airfoil_dat`], [`airfoil_curve`] |
+//! | [`surface`] | parametric surfaces on (u, v) ∈ [0, 1]² with 2nd derivatives; closest point | [`Surface`], [`HermiteSurface`], [`BSplineSurf`], [`project`], [`SurfaceLocator`] |
+//! | [`bvh`] | conservative f64 box hierarchy over obvhs | [`BoxTree`] |
 //!
 //! A boundary edge is a [`Curve`] plus a [`Distribution`]:
 //!
@@ -24,15 +26,26 @@
 //!   calculations, J. Comput. Phys. 50 (1983) 215–234.
 //! - \[Abbott & von Doenhoff\] Theory of Wing Sections, Dover 1959 (NACA 4-digit sections).
 //! - \[TP 96338\] J. Spekreijse, J. W. Boerstoel, Multiblock grid generation, NLR TP 96338.
+//! - \[Piegl & Tiller\] L. Piegl, W. Tiller, The NURBS Book, 2nd ed., Springer 1997 (A2.3:
+//!   B-spline basis derivatives; rational derivatives, [`BSplineSurf`]).
+//! - \[Ericson\] C. Ericson, Real-Time Collision Detection, Morgan Kaufmann 2005 (§5.1.5:
+//!   closest point on a triangle, [`SurfaceLocator`]).
 #![warn(missing_docs)]
 
 pub mod airfoil;
+pub mod bvh;
 pub mod curve;
 pub mod distribution;
+pub mod surface;
 
 pub use airfoil::{airfoil_curve, read_airfoil_dat};
+pub use bvh::BoxTree;
 pub use curve::{sample, Arc, ArclengthMap, Curve, Line, Naca4, Naca4Side, Polyline, Spline};
 pub use distribution::{geometric, reverse, uniform, vinokur, Distribution};
+pub use surface::{
+    project, project_to_edge, scherk_distance, BSplineSurf, HermiteSurface, Plane, Scherk, Surface,
+    SurfaceEdge, SurfaceLocator, SurfacePoint, TanhBump,
+};
 
 /// A point or vector in R³; planar curves have z = 0.
 pub type Vec3 = nalgebra::Vector3<f64>;

@@ -1,6 +1,8 @@
 //! clap definitions and the subcommands. Exit codes: 0 success, 2 bad input (unreadable or
 //! malformed files, inconsistent edges, …), 3 folded grid, 4 solver failure.
 
+mod convert;
+mod plot;
 mod print;
 
 use clap::{Parser, Subcommand};
@@ -9,8 +11,9 @@ use ellipgrid::io::plot3d;
 use ellipgrid::io::Block;
 use ellipgrid::job;
 use ellipgrid::poisson2d::PicardParams;
-use ellipgrid::quality::{self, QualityReport};
+use ellipgrid::quality;
 use ellipgrid::smooth::{smooth_blocks, SmoothOptions};
+use ellipgrid::volume::quality3d::AnyQuality;
 use ellipgrid::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -66,6 +69,9 @@ enum Command {
         /// Picard tolerance (max node update / block diameter).
         #[arg(long, default_value_t = 1e-10)]
         tolerance: f64,
+        /// Make the grid orthogonal at these edges (Section 2.4), e.g. `--orthogonal E1,E3`.
+        #[arg(long, value_delimiter = ',', value_name = "E,..")]
+        orthogonal: Vec<String>,
         /// Write the report (per block: method, start grid, Picard history, quality) as JSON.
         #[arg(long, value_name = "FILE.json")]
         report: Option<PathBuf>,
@@ -84,6 +90,10 @@ enum Command {
         #[arg(long, value_name = "FILE.json")]
         report: Option<PathBuf>,
     },
+    /// Convert a grid to another format or Plot3D flavour (Plot3D, VTK, glTF, OBJ, picture).
+    Convert(convert::ConvertArgs),
+    /// Draw a grid as a picture (.png or .svg): grid lines, close-ups, quality colours.
+    Plot(plot::PlotArgs),
 }
 
 /// Parses the command line and runs it.
@@ -106,16 +116,20 @@ pub fn main() -> ExitCode {
             quiet,
         ),
         Command::Check { grid, report } => check(&grid, report.as_deref()),
+        Command::Convert(a) => convert::convert(&a),
+        Command::Plot(a) => plot::plot(&a),
         Command::Smooth {
             input,
             output,
             blocks,
             linear,
             tolerance,
+            orthogonal,
             report,
             allow_folded,
             quiet,
-        } => {
+        } => (|| {
+            let orthogonal = ellipgrid::orthogonal::parse_edges(&orthogonal, "--orthogonal")?;
             let opts = SmoothOptions {
                 blocks,
                 linear,
@@ -123,6 +137,7 @@ pub fn main() -> ExitCode {
                     tolerance,
                     ..PicardParams::default()
                 },
+                orthogonal,
                 ..SmoothOptions::default()
             };
             smooth(
@@ -133,7 +148,7 @@ pub fn main() -> ExitCode {
                 allow_folded,
                 quiet,
             )
-        }
+        })(),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,
@@ -183,11 +198,15 @@ fn run(
             }
         }
     }
+    ellipgrid::volume::set_progress(!quiet);
     let mut gen = job::generate(&case, |b| {
         if !quiet {
             print::block(b);
         }
     })?;
+    if !quiet {
+        gen.report.volumes.iter().for_each(print::volume);
+    }
     let fold = gen.report.fold_error();
     if fold.is_none() || allow_folded {
         let written = job::write_outputs(&gen.blocks, &paths, &fmt)?;
@@ -234,8 +253,8 @@ fn smooth(
         .find(|r| r.quality.is_folded())
         .map(|r| Error::Folded {
             place: format!("{name}: block {}", r.block),
-            count: r.quality.folded_cells,
-            first: job::cell_list(&r.quality.first_folded),
+            count: r.quality.folded_cells(),
+            first: r.quality.folded_list(),
         });
     let mut written = Vec::new();
     if fold.is_none() || allow_folded {
@@ -250,7 +269,7 @@ fn smooth(
                     .enumerate()
                     .map(|(k, b)| (format!("block{}", k + 1), b.clone()))
                     .collect();
-                written.extend(job::write_outputs(&named, &[p.clone()], &file.format)?);
+                written.extend(job::write_outputs(&named, std::slice::from_ref(p), &file.format)?);
             }
         }
         if !quiet {
@@ -274,21 +293,19 @@ fn smooth(
 
 fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
     let file = plot3d::read_plot3d(grid)?;
-    let mut reports: Vec<(String, QualityReport)> = Vec::new();
+    let mut reports: Vec<(String, AnyQuality)> = Vec::new();
     for (k, b) in file.blocks.iter().enumerate() {
-        let q = match b {
-            Block::Planar(g) => quality::quality2d(g),
-            Block::Surface(g) => quality::quality_surface(g),
-            Block::Volume(_) => {
-                println!(
-                    "block {}: volume block ({:?}): no volume quality yet",
-                    k + 1,
-                    b.dims()
-                );
-                continue;
-            }
+        let q: AnyQuality = match b {
+            Block::Planar(g) => quality::quality2d(g).into(),
+            Block::Surface(g) => quality::quality_surface(g).into(),
+            Block::Volume(g) => AnyQuality::Volume(ellipgrid::volume::quality3d(g)),
         };
-        println!("block {} ({} × {}):", k + 1, b.dims()[0], b.dims()[1]);
+        let d = b.dims();
+        if let Block::Volume(_) = b {
+            println!("block {} ({} × {} × {}):", k + 1, d[0], d[1], d[2]);
+        } else {
+            println!("block {} ({} × {}):", k + 1, d[0], d[1]);
+        }
         println!("{q}");
         reports.push((format!("block{}", k + 1), q));
     }
@@ -302,13 +319,13 @@ fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
             &serde_json::json!({ "grid": grid.display().to_string(), "blocks": v }),
         )?;
     }
-    let folded: Vec<&(String, QualityReport)> =
+    let folded: Vec<&(String, AnyQuality)> =
         reports.iter().filter(|(_, q)| q.is_folded()).collect();
     if let Some((name, q)) = folded.first() {
         return Err(Error::Folded {
             place: format!("{}: {name}", grid.display()),
-            count: q.folded_cells,
-            first: job::cell_list(&q.first_folded),
+            count: q.folded_cells(),
+            first: q.folded_list(),
         });
     }
     Ok(())

@@ -24,6 +24,22 @@ pub fn block(b: &BlockReport) {
     println!("{}", b.quality);
 }
 
+/// Prints a volume block's Picard history and 3D quality report.
+pub fn volume(v: &ellipgrid::volume::case3d::VolumeReport) {
+    println!(
+        "volume '{}' ({} × {} × {} nodes), {:.3} s",
+        v.name, v.ni, v.nj, v.nk, v.seconds
+    );
+    history(&v.picard);
+    println!("{}", v.quality);
+    if !v.picard.converged {
+        eprintln!(
+            "warning: volume '{}': Picard iteration stopped after {} steps (tolerance {:.1e})",
+            v.name, v.picard.steps, v.picard.tolerance
+        );
+    }
+}
+
 /// Prints a Picard history.
 pub fn history(p: &PicardInfo) {
     println!(

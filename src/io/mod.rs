@@ -1,5 +1,6 @@
 //! Grid file output and input: Plot3D (every "whole" flavour, read with autodetection) and VTK
-//! XML (`.vts` per block, `.vtm` for a multi-block set). All writers are atomic: a file at the
+//! XML (`.vts` per block, `.vtm` for a multi-block set); for viewers glTF 2.0 ([`gltf`]) and OBJ
+//! ([`obj`]) of the blocks' surfaces ([`patches`]). All writers are atomic: a file at the
 //! target path is either the complete new output or untouched.
 
 use std::io::{BufWriter, Write};
@@ -7,8 +8,12 @@ use std::path::Path;
 
 use crate::{Error, Grid2, Grid3, Result};
 
+pub mod gltf;
+pub mod obj;
+pub mod patches;
 pub mod plot3d;
 pub mod vtk;
+pub mod vtk_read;
 
 /// One structured block as stored in a grid file.
 #[derive(Clone, Debug, PartialEq)]

@@ -14,7 +14,7 @@ use std::sync::OnceLock;
 /// Gauss–Legendre nodes per panel.
 const M: usize = 20;
 /// Accept a panel when its trailing Legendre coefficients are below this times its max speed.
-const REL_TOL: f64 = 1e-14;
+const REL_TOL: f64 = 1e-13;
 /// Stop bisecting below this panel width (non-smooth points that were not declared).
 const MIN_WIDTH: f64 = 1.0 / (1u64 << 40) as f64;
 
@@ -152,7 +152,10 @@ impl ArclengthMap {
             }
             let fmax = f.iter().fold(0.0f64, |m, v| m.max(*v));
             let tail = coef[M - 1].abs() + coef[M - 2].abs();
-            let resolved = tail <= REL_TOL * fmax || !tail.is_finite();
+            // Converged, or down at the round-off floor of the speed samples (without this
+            // guard a noisy speed would be bisected to MIN_WIDTH everywhere).
+            let floor = 16.0 * f64::EPSILON * f.iter().map(|v| v.abs()).sum::<f64>();
+            let resolved = tail <= REL_TOL * fmax || tail <= floor || !tail.is_finite();
             if resolved || b - a <= MIN_WIDTH {
                 let len: f64 = half * rule.weights.iter().zip(&f).map(|(w, v)| w * v).sum::<f64>();
                 panels.push(Panel { a, b, s_a: s, coef });

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Checks ellipgrid's outputs with independent tools (run by .ci/run after the tests):
+#  - VTK's readers on every Plot3D flavour, .vts, .vtm and .obj (.ci/independent_readers.py);
+#  - the Khronos glTF validator on the .glb of every example, of a volume grid with quality
+#    colours, and on a .gltf (.ci/gltf_validate.js; zero errors required).
+# Needs: python3 with vtk (pip install vtk), node with gltf-validator under target/ci-node.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet
+exe="$PWD/target/release/ellipgrid"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+python3 .ci/independent_readers.py "$exe" "$work"
+
+glbs=()
+for ex in examples/*.toml; do
+  name="$(basename "$ex" .toml)"
+  "$exe" run -q "$ex" -o "$work/${name}_run.x" -o "$work/$name.glb" -o "$work/$name.png" \
+    -o "$work/$name.svg"
+  "$exe" convert -q "$work/${name}_run.x" "$work/${name}_skewness.glb" --color skewness
+  glbs+=("$work/$name.glb" "$work/${name}_skewness.glb")
+done
+# Multi-block volume and planar grids written by independent_readers.py.
+"$exe" convert -q "$work/volume2_ref.xyz" "$work/volume2.glb" --color jacobian
+"$exe" convert -q "$work/planar2_ref.xyz" "$work/planar2.gltf" --color aspect
+"$exe" plot -q "$work/volume2_ref.xyz" -o "$work/volume2.png" --color skewness
+NODE_PATH="$PWD/target/ci-node/node_modules" node .ci/gltf_validate.js \
+  "${glbs[@]}" "$work/volume2.glb" "$work/planar2.gltf"

@@ -1,0 +1,270 @@
+//! `ellipgrid convert IN OUT`: rewrites a grid in another format or Plot3D flavour, and the
+//! loading of grid inputs shared with `ellipgrid plot`.
+
+use clap::Args;
+use ellipgrid::case::LoadedCase;
+use ellipgrid::io::gltf::{self, GltfOptions};
+use ellipgrid::io::patches::CellMetric;
+use ellipgrid::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
+use ellipgrid::io::{vtk_read, Block};
+use ellipgrid::job::{self, OutputKind};
+use ellipgrid::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `ellipgrid convert`.
+#[derive(Args, Debug)]
+pub struct ConvertArgs {
+    /// The input: a Plot3D grid (any flavour, autodetected), a VTK .vts/.vtm structured grid,
+    /// or a case file (.toml, run first).
+    input: PathBuf,
+    /// The output, by extension: .x/.xyz/.p3d/.g/.grd (Plot3D), .vts, .vtm, .glb, .gltf, .obj,
+    /// .png or .svg.
+    output: PathBuf,
+    /// Plot3D encoding: unformatted (Fortran records), formatted (ASCII) or stream (C binary).
+    /// Default: the input's (unformatted for case files).
+    #[arg(long, value_name = "ENC")]
+    encoding: Option<String>,
+    /// Plot3D precision: single or double. Default: the input's (double for case files).
+    #[arg(long, value_name = "P")]
+    precision: Option<String>,
+    /// Plot3D without the block-count record (one block only).
+    #[arg(long, conflicts_with = "multi_block")]
+    single_block: bool,
+    /// Plot3D with the block-count record.
+    #[arg(long)]
+    multi_block: bool,
+    /// 2D Plot3D (x, y only; planar blocks only).
+    #[arg(long, conflicts_with = "three_d")]
+    two_d: bool,
+    /// 3D Plot3D (planar blocks get z = 0).
+    #[arg(long)]
+    three_d: bool,
+    /// Big-endian binary Plot3D.
+    #[arg(long, conflicts_with = "little_endian")]
+    big_endian: bool,
+    /// Little-endian binary Plot3D.
+    #[arg(long)]
+    little_endian: bool,
+    /// Plot3D with IBLANK (the input's values if it has them, else 1 everywhere).
+    #[arg(long, conflicts_with = "no_iblank")]
+    iblank: bool,
+    /// Plot3D without IBLANK.
+    #[arg(long)]
+    no_iblank: bool,
+    /// glTF: colour the vertices by a cell metric averaged to the nodes (skewness, jacobian or
+    /// aspect).
+    #[arg(long, value_name = "METRIC")]
+    color: Option<String>,
+    /// Print only errors.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+/// A loaded grid: named blocks, and the Plot3D flavour and IBLANK of a Plot3D input.
+pub struct Loaded {
+    pub blocks: Vec<(String, Block)>,
+    pub format: Option<Plot3dFormat>,
+    pub iblank: Option<Vec<Vec<i32>>>,
+}
+
+/// Reads a grid input: a case file (`.toml`, gridded now; a folded grid is an error unless
+/// `allow_folded`, then a warning), a `.vts`/`.vtm` VTK structured grid, or a Plot3D file of
+/// any flavour.
+pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .unwrap_or_default();
+    if ext == "toml" {
+        let case = LoadedCase::read(path)?;
+        let gen = job::generate(&case, |b| {
+            if !quiet {
+                println!("gridded block '{}' ({} × {})", b.name, b.ni, b.nj);
+            }
+        })?;
+        if let Some(e) = gen.report.fold_error() {
+            if !allow_folded {
+                return Err(e);
+            }
+            eprintln!("warning: {e}");
+        }
+        return Ok(Loaded {
+            blocks: gen.blocks,
+            format: None,
+            iblank: None,
+        });
+    }
+    if ext == "vts" || ext == "vtm" {
+        let blocks = if ext == "vtm" {
+            vtk_read::read_vtm(path)?
+        } else {
+            let name = path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("block1");
+            vec![(name.to_string(), vtk_read::read_vts(path)?)]
+        };
+        return Ok(Loaded {
+            blocks,
+            format: None,
+            iblank: None,
+        });
+    }
+    if matches!(ext.as_str(), "glb" | "gltf" | "obj" | "png" | "svg") {
+        return Err(Error::input(
+            path.display().to_string(),
+            "cannot read this format: inputs are Plot3D grids (.x .xyz .p3d .g .grd, any \
+             flavour), VTK structured grids (.vts, .vtm) or case files (.toml)",
+        ));
+    }
+    let file = plot3d::read_plot3d(path)?;
+    let blocks = file
+        .blocks
+        .into_iter()
+        .enumerate()
+        .map(|(k, b)| (format!("block{}", k + 1), b))
+        .collect();
+    Ok(Loaded {
+        blocks,
+        format: Some(file.format),
+        iblank: file.iblank,
+    })
+}
+
+/// Parses a metric name for `--color`.
+pub fn metric(s: &str) -> Result<CellMetric> {
+    CellMetric::parse(s).ok_or_else(|| {
+        Error::input(
+            "--color",
+            format!("'{s}': expected skewness, jacobian or aspect"),
+        )
+    })
+}
+
+/// Runs `ellipgrid convert`.
+pub fn convert(a: &ConvertArgs) -> Result<()> {
+    let kind = job::output_kind(&a.output)?;
+    let color = a.color.as_deref().map(metric).transpose()?;
+    if color.is_some() && !matches!(kind, OutputKind::Glb | OutputKind::Gltf) {
+        return Err(Error::input(
+            a.output.display().to_string(),
+            "--color colours glTF output (.glb, .gltf); pictures: ellipgrid plot --color",
+        ));
+    }
+    let options = plot3d_options_given(a);
+    if options && kind != OutputKind::Plot3d {
+        return Err(Error::input(
+            a.output.display().to_string(),
+            "Plot3D options (--encoding, --precision, …) need a Plot3D output",
+        ));
+    }
+    let input = load(&a.input, false, a.quiet)?;
+    let fmt = if options {
+        Some(plot3d_format(a, input.format)?)
+    } else {
+        None
+    };
+    let blocks = &input.blocks;
+    let written = match kind {
+        OutputKind::Plot3d => {
+            let mut f = fmt.unwrap_or(input.format.unwrap_or(Plot3dFormat {
+                two_d: blocks.iter().all(|(_, b)| matches!(b, Block::Planar(_))),
+                ..Plot3dFormat::default()
+            }));
+            if fmt.is_none() && blocks.len() > 1 {
+                f.multi_block = true;
+            }
+            let only: Vec<Block> = blocks.iter().map(|(_, b)| b.clone()).collect();
+            let ib = if f.iblank {
+                input.iblank.as_deref()
+            } else {
+                None
+            };
+            plot3d::write_plot3d(&a.output, &only, &f, ib)?;
+            vec![a.output.clone()]
+        }
+        OutputKind::Glb => {
+            gltf::write_glb(&a.output, blocks, &GltfOptions { color })?;
+            vec![a.output.clone()]
+        }
+        OutputKind::Gltf => {
+            gltf::write_gltf(&a.output, blocks, &GltfOptions { color })?;
+            vec![a.output.with_extension("bin"), a.output.clone()]
+        }
+        _ => {
+            let base = input.format.unwrap_or_default();
+            job::write_outputs(blocks, std::slice::from_ref(&a.output), &base)?
+        }
+    };
+    if !a.quiet {
+        for p in &written {
+            println!("wrote {}", p.display());
+        }
+    }
+    Ok(())
+}
+
+/// True if any Plot3D flavour option was given (else the input's flavour is kept).
+fn plot3d_options_given(a: &ConvertArgs) -> bool {
+    a.encoding.is_some()
+        || a.precision.is_some()
+        || a.single_block
+        || a.multi_block
+        || a.two_d
+        || a.three_d
+        || a.big_endian
+        || a.little_endian
+        || a.iblank
+        || a.no_iblank
+}
+
+/// The Plot3D flavour asked for: the input's flavour (`base`; case files: unformatted, double,
+/// 2D) with the options applied.
+fn plot3d_format(a: &ConvertArgs, base: Option<Plot3dFormat>) -> Result<Plot3dFormat> {
+    let mut f = base.unwrap_or(Plot3dFormat {
+        two_d: true,
+        ..Plot3dFormat::default()
+    });
+    if let Some(e) = &a.encoding {
+        f.encoding = match e.as_str() {
+            "unformatted" => Encoding::Unformatted,
+            "formatted" => Encoding::Formatted,
+            "stream" => Encoding::Stream,
+            _ => {
+                return Err(Error::input(
+                    "--encoding",
+                    format!("'{e}': expected unformatted, formatted or stream"),
+                ))
+            }
+        };
+    }
+    if let Some(p) = &a.precision {
+        f.precision = match p.as_str() {
+            "single" => Precision::Single,
+            "double" => Precision::Double,
+            _ => {
+                return Err(Error::input(
+                    "--precision",
+                    format!("'{p}': expected single or double"),
+                ))
+            }
+        };
+    }
+    let set = |on: bool, off: bool, v: &mut bool| {
+        if on {
+            *v = true;
+        } else if off {
+            *v = false;
+        }
+    };
+    set(a.multi_block, a.single_block, &mut f.multi_block);
+    set(a.two_d, a.three_d, &mut f.two_d);
+    set(a.iblank, a.no_iblank, &mut f.iblank);
+    if a.big_endian {
+        f.byte_order = ByteOrder::Big;
+    } else if a.little_endian {
+        f.byte_order = ByteOrder::Little;
+    }
+    Ok(f)
+}

@@ -1,0 +1,111 @@
+//! `ellipgrid plot GRID -o fig.png|fig.svg`: a picture of a grid (see `ellipgrid::plot`).
+
+use clap::Args;
+use ellipgrid::plot::{self, Plane, PlotOptions, View};
+use ellipgrid::{Error, Result};
+use std::path::PathBuf;
+
+use super::convert::{load, metric};
+
+/// Arguments of `ellipgrid plot`.
+#[derive(Args, Debug)]
+pub struct PlotArgs {
+    /// The grid: a Plot3D file (any flavour), a .vts/.vtm VTK grid, or a case file (.toml, run
+    /// first; a folded grid is drawn with a warning).
+    grid: PathBuf,
+    /// The picture: .png or .svg.
+    #[arg(short, long = "output", value_name = "FIG")]
+    output: PathBuf,
+    /// Close-up window x0,y0,x1,y1 in projected coordinates (model x, y for the xy view).
+    #[arg(long, value_name = "X0,Y0,X1,Y1", allow_hyphen_values = true)]
+    window: Option<String>,
+    /// Fill the cells by a quality metric, with a colour bar: skewness, jacobian (smallest
+    /// scaled corner Jacobian) or aspect.
+    #[arg(long, value_name = "METRIC")]
+    color: Option<String>,
+    /// Picture size in pixels, WxH.
+    #[arg(long, value_name = "WxH", default_value = "1200x900")]
+    size: String,
+    /// Projection: xy, xz, yz or iso (default: xy for planar grids, iso otherwise).
+    #[arg(long, value_name = "VIEW")]
+    view: Option<String>,
+    /// Draw one grid plane of volume blocks (0-based): i=I, j=J or k=K.
+    #[arg(long, value_name = "k=K")]
+    plane: Option<String>,
+    /// Print only errors.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+/// Runs `ellipgrid plot`.
+pub fn plot(a: &PlotArgs) -> Result<()> {
+    let bad = |opt: &str, msg: String| Error::input(opt, msg);
+    let size = a
+        .size
+        .split_once(['x', 'X'])
+        .and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)))
+        .ok_or_else(|| {
+            bad(
+                "--size",
+                format!("'{}': expected WxH, e.g. 1200x900", a.size),
+            )
+        })?;
+    let window = match &a.window {
+        None => None,
+        Some(s) => {
+            let v: Vec<f64> = s
+                .split(',')
+                .map(|t| t.trim().parse::<f64>())
+                .collect::<std::result::Result<_, _>>()
+                .map_err(|_| bad("--window", format!("'{s}': expected x0,y0,x1,y1")))?;
+            match v[..] {
+                [x0, y0, x1, y1] if v.iter().all(|t| t.is_finite()) && x1 > x0 && y1 > y0 => {
+                    Some([x0, y0, x1, y1])
+                }
+                _ => {
+                    let msg = format!("'{s}': expected four numbers x0,y0,x1,y1, x0 < x1, y0 < y1");
+                    return Err(bad("--window", msg));
+                }
+            }
+        }
+    };
+    let view = match &a.view {
+        None => None,
+        Some(s) => Some(
+            View::parse(s)
+                .ok_or_else(|| bad("--view", format!("'{s}': expected xy, xz, yz or iso")))?,
+        ),
+    };
+    let plane = match &a.plane {
+        None => None,
+        Some(s) => Some(
+            Plane::parse(s)
+                .ok_or_else(|| bad("--plane", format!("'{s}': expected i=I, j=J or k=K")))?,
+        ),
+    };
+    let color = a.color.as_deref().map(metric).transpose()?;
+    let ext = a
+        .output
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    if !matches!(ext.as_deref(), Some("png" | "svg")) {
+        return Err(Error::input(
+            a.output.display().to_string(),
+            "unknown picture extension: use .png or .svg",
+        ));
+    }
+    let opts = PlotOptions {
+        size,
+        window,
+        color,
+        view,
+        plane,
+    };
+    let input = load(&a.grid, true, a.quiet)?;
+    plot::write_picture(&a.output, &input.blocks, &opts)?;
+    if !a.quiet {
+        println!("wrote {}", a.output.display());
+    }
+    Ok(())
+}

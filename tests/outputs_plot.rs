@@ -1,0 +1,220 @@
+//! Pictures: `ellipgrid plot` on every shipped example (PNG decoded with the `png` crate, SVG
+//! header parsed), close-ups, colours, planes, and the bad-input paths.
+
+mod common;
+use common::*;
+use ellipgrid::io::Block;
+use ellipgrid::plot::{write_picture, Plane, PlotOptions, View};
+use ellipgrid::Grid2;
+use std::path::Path;
+
+fn tmp() -> tempfile::TempDir {
+    tempfile::tempdir().unwrap()
+}
+
+/// Decodes a PNG: (width, height, RGBA pixels).
+fn decode_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let dec = png::Decoder::new(std::fs::File::open(path).unwrap());
+    let mut r = dec.read_info().expect("a valid PNG header");
+    let mut buf = vec![0; r.output_buffer_size()];
+    let info = r.next_frame(&mut buf).expect("valid PNG data");
+    assert_eq!(info.color_type, png::ColorType::Rgba);
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// Width and height from the root element of an SVG file.
+fn svg_size(text: &str) -> (u32, u32) {
+    assert!(text.starts_with("<?xml"), "XML declaration");
+    let root = &text[text.find("<svg ").expect("an <svg> element")..];
+    let root = &root[..root.find('>').unwrap()];
+    assert!(root.contains("xmlns=\"http://www.w3.org/2000/svg\""));
+    let attr = |n: &str| -> u32 {
+        let s = &root[root.find(&format!(" {n}=\"")).unwrap() + n.len() + 3..];
+        s[..s.find('"').unwrap()].parse().unwrap()
+    };
+    assert!(text.trim_end().ends_with("</svg>"));
+    (attr("width"), attr("height"))
+}
+
+/// Counts of drawn (darker than light grey: grid lines) and non-grey (coloured) pixels.
+fn pixel_stats(px: &[u8]) -> (usize, usize) {
+    let mut dark = 0;
+    let mut coloured = 0;
+    for p in px.chunks(4) {
+        let (r, g, b) = (p[0] as i32, p[1] as i32, p[2] as i32);
+        if r + g + b < 600 {
+            dark += 1;
+        }
+        if (r - g).abs() > 40 || (g - b).abs() > 40 {
+            coloured += 1;
+        }
+    }
+    (dark, coloured)
+}
+
+#[test]
+fn every_example_gives_a_png_and_an_svg_of_the_requested_size() {
+    let d = tmp();
+    let mut n = 0;
+    for e in std::fs::read_dir(root().join("examples")).unwrap() {
+        let case = e.unwrap().path();
+        if case.extension().and_then(|x| x.to_str()) != Some("toml") {
+            continue;
+        }
+        n += 1;
+        let name = case.file_stem().unwrap().to_str().unwrap().to_string();
+        let c = case.to_str().unwrap();
+        let png = format!("{name}.png");
+        let o = ellipgrid(
+            d.path(),
+            &["plot", c, "-o", &png, "--size", "640x480", "-q"],
+        );
+        assert!(o.status.success(), "{name}: {}", text(&o));
+        let (w, h, px) = decode_png(&d.path().join(&png));
+        assert_eq!((w, h), (640, 480), "{name}");
+        let (dark, coloured) = pixel_stats(&px);
+        assert!(dark > 5000, "{name}: only {dark} drawn pixels: no grid?");
+        assert_eq!(coloured, 0, "{name}: colours without --color");
+        // Corners are background.
+        assert_eq!(&px[0..4], &[255, 255, 255, 255]);
+
+        let svg = format!("{name}.svg");
+        let o = ellipgrid(
+            d.path(),
+            &[
+                "plot", c, "-o", &svg, "--size", "300x200", "--color", "skewness", "-q",
+            ],
+        );
+        assert!(o.status.success(), "{name}: {}", text(&o));
+        let t = std::fs::read_to_string(d.path().join(&svg)).unwrap();
+        assert_eq!(svg_size(&t), (300, 200), "{name}");
+        assert!(
+            t.contains("<polygon") && t.contains(">skewness</text>"),
+            "{name}"
+        );
+    }
+    assert!(n >= 3, "the examples were not found");
+}
+
+#[test]
+fn close_up_colours_and_legend() {
+    let d = tmp();
+    let case = root().join("examples/boundary_layer.toml");
+    let o = ellipgrid(
+        d.path(),
+        &["run", "-q", case.to_str().unwrap(), "-o", "bl.x"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let whole = ellipgrid(
+        d.path(),
+        &["plot", "bl.x", "-o", "whole.png", "--size", "400x300", "-q"],
+    );
+    assert!(whole.status.success(), "{}", text(&whole));
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "plot",
+            "bl.x",
+            "-o",
+            "zoom.png",
+            "--size",
+            "400x300",
+            "--window",
+            "1.0,-0.01,1.1,0.05",
+            "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    // The close-up x ∈ [1, 1.1], y ∈ [−0.01, 0.05] puts the wall (y ≈ 0) at about 70 % of the
+    // height: rows below it are background.
+    let (w, h, a) = decode_png(&d.path().join("whole.png"));
+    let (_, _, b) = decode_png(&d.path().join("zoom.png"));
+    let rows = |px: &[u8], from: f64, to: f64| {
+        let r = (from * h as f64) as usize..(to * h as f64) as usize;
+        pixel_stats(&px[4 * w as usize * r.start..4 * w as usize * r.end]).0
+    };
+    assert_eq!(rows(&b, 0.8, 0.95), 0, "close-up: nothing below the wall");
+    assert!(
+        rows(&a, 0.4, 0.6) > 1000,
+        "whole grid: lines across the middle"
+    );
+    assert_ne!(a, b);
+    assert!(rows(&b, 0.1, 0.6) > 1000, "close-up: lines above the wall");
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "plot", "bl.x", "-o", "col.png", "--size", "500x300", "--color", "aspect", "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let (w, h, px) = decode_png(&d.path().join("col.png"));
+    assert_eq!((w, h), (500, 300));
+    let (_, coloured) = pixel_stats(&px);
+    assert!(
+        coloured > 5000,
+        "cells and colour bar are coloured: {coloured}"
+    );
+    // The colour bar: a column of the legend runs from yellow (top) to purple (bottom).
+    let col: Vec<&[u8]> = (0..h as usize)
+        .map(|y| &px[4 * (y * w as usize + 383)..][..4])
+        .filter(|p| p[..3] != [255, 255, 255] && p[0] as u32 + p[1] as u32 + p[2] as u32 >= 100)
+        .collect();
+    assert!(col.len() > 100, "colour bar not at x = 383");
+    let (top, bottom) = (col[2], col[col.len() - 3]);
+    assert!(
+        top[1] > 200 && bottom[1] < 50,
+        "top {top:?}, bottom {bottom:?}"
+    );
+}
+
+#[test]
+fn volume_planes_views_and_library_entry() {
+    let d = tmp();
+    let case = root().join("examples/volume_warped_cube.toml");
+    let c = case.to_str().unwrap();
+    for (args, ok) in [
+        (vec!["--plane", "k=0", "--view", "xy"], true),
+        (
+            vec!["--plane", "j=3", "--view", "xz", "--color", "jacobian"],
+            true,
+        ),
+        (vec!["--view", "yz"], true),
+        (vec!["--plane", "k=100000"], false),
+        (vec!["--plane", "q=1"], false),
+        (vec!["--view", "top"], false),
+        (vec!["--size", "10x10"], false),
+        (vec!["--size", "big"], false),
+        (vec!["--window", "1,1,0,0"], false),
+    ] {
+        let mut a = vec!["plot", c, "-o", "v.png", "-q"];
+        a.extend(&args);
+        let _ = std::fs::remove_file(d.path().join("v.png"));
+        let o = ellipgrid(d.path(), &a);
+        assert_eq!(o.status.success(), ok, "{args:?}: {}", text(&o));
+        assert_eq!(d.path().join("v.png").exists(), ok, "{args:?}");
+        if !ok {
+            assert_eq!(o.status.code(), Some(2), "{args:?}");
+        }
+    }
+    let o = ellipgrid(d.path(), &["plot", c, "-o", "v.jpg"]);
+    assert_eq!(o.status.code(), Some(2));
+
+    // The library entry point: a sheared planar grid seen from iso still draws.
+    let g = Grid2::<2>::from_fn(9, 5, |i, j| [i as f64 + 0.3 * j as f64, j as f64]);
+    let opts = PlotOptions {
+        size: (200, 100),
+        view: Some(View::Iso),
+        ..PlotOptions::default()
+    };
+    let p = d.path().join("lib.svg");
+    write_picture(&p, &[("g".into(), Block::Planar(g.clone()))], &opts).unwrap();
+    let t = std::fs::read_to_string(&p).unwrap();
+    assert_eq!(svg_size(&t), (200, 100));
+    assert_eq!(t.matches("<polygon").count(), 8 * 4, "one polygon per cell");
+    let bad = PlotOptions {
+        plane: Some(Plane::I(0)),
+        ..PlotOptions::default()
+    };
+    assert!(write_picture(&p, &[("g".into(), Block::Planar(g))], &bad).is_err());
+}
