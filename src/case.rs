@@ -11,7 +11,10 @@ use crate::poisson2d::PicardParams;
 use crate::{Error, Result};
 use ellipgrid_geometry::{self as geo, Curve, Vec3};
 use serde::Deserialize;
+
+mod surface;
 use std::path::{Path, PathBuf};
+pub use surface::SurfaceSpec;
 
 /// A whole case file.
 #[derive(Clone, Debug, Deserialize)]
@@ -54,7 +57,8 @@ pub struct OutputSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
-    /// Linear solver of each Picard step: "direct" (sparse LU) or "multigrid".
+    /// Linear solver of each Picard step: "multigrid" (default; with nested iteration unless
+    /// `nested = false`) or "direct" (sparse LU).
     pub linear: String,
     /// Control functions: "algebraic" (the paper's, default) or "laplace" (all zero).
     pub control: ControlKind,
@@ -66,7 +70,7 @@ pub struct SolverSpec {
 impl Default for SolverSpec {
     fn default() -> Self {
         SolverSpec {
-            linear: "direct".into(),
+            linear: "multigrid".into(),
             control: ControlKind::Algebraic,
             picard: PicardParams::default(),
         }
@@ -98,6 +102,8 @@ pub struct BlockSpec {
     pub e3: EdgeSpec,
     #[serde(rename = "E4")]
     pub e4: EdgeSpec,
+    /// The surface of a `kind = "surface"` block (its edges are the surface's own edges).
+    pub surface: Option<SurfaceSpec>,
 }
 
 /// The kind of a block.
@@ -117,7 +123,8 @@ pub enum BlockKind {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EdgeSpec {
-    pub curve: CurveSpec,
+    /// The edge's curve (planar and minimal blocks; surface blocks use the surface's edges).
+    pub curve: Option<CurveSpec>,
     #[serde(default)]
     pub distribution: DistributionSpec,
     /// Run along the curve from its end to its start.
@@ -200,6 +207,40 @@ pub enum DistributionSpec {
         first: Option<f64>,
         last: Option<f64>,
     },
+}
+
+impl DistributionSpec {
+    /// Normalized arclengths of `n` nodes on an edge of length `len` (spacings in the spec are
+    /// lengths; the distribution hits them exactly).
+    pub fn sample(&self, n: usize, len: f64, at: &str) -> Result<Vec<f64>> {
+        if !(len.is_finite() && len > 0.0) {
+            return Err(Error::input(at, "the edge has zero length"));
+        }
+        let rel = |v: f64, name: &str| -> Result<f64> {
+            if v.is_finite() && v > 0.0 {
+                Ok(v / len)
+            } else {
+                Err(Error::input(
+                    at,
+                    format!("{name} spacing must be positive, got {v}"),
+                ))
+            }
+        };
+        let dist = match self {
+            DistributionSpec::Uniform => geo::Distribution::Uniform,
+            DistributionSpec::Geometric { first } => geo::Distribution::Geometric {
+                first: rel(*first, "first")?,
+            },
+            DistributionSpec::Vinokur { first, last } => geo::Distribution::Vinokur {
+                first: first.map(|v| rel(v, "first")).transpose()?,
+                last: last.map(|v| rel(v, "last")).transpose()?,
+            },
+        };
+        dist.sample(n).map_err(|source| Error::Geometry {
+            place: at.to_string(),
+            source,
+        })
+    }
 }
 
 /// A case file read from disk, with its folder for relative input paths.
@@ -302,11 +343,10 @@ impl LoadedCase {
 
     /// The n nodes of one edge.
     pub fn edge_points(&self, spec: &EdgeSpec, n: usize, at: &str) -> Result<Vec<Vec3>> {
-        let geo_err = |source| Error::Geometry {
-            place: at.to_string(),
-            source,
+        let Some(curve_spec) = &spec.curve else {
+            return Err(Error::input(at, "the edge needs a curve = { type = ... }"));
         };
-        if let CurveSpec::Nodes { points } = &spec.curve {
+        if let CurveSpec::Nodes { points } = curve_spec {
             if !matches!(spec.distribution, DistributionSpec::Uniform) {
                 return Err(Error::input(at, "a 'nodes' edge takes no distribution"));
             }
@@ -329,33 +369,9 @@ impl LoadedCase {
             }
             return Ok(p);
         }
-        let curve = self.curve(&spec.curve, at)?;
+        let curve = self.curve(curve_spec, at)?;
         let map = geo::ArclengthMap::new(curve.as_ref());
-        let len = map.length();
-        if !(len.is_finite() && len > 0.0) {
-            return Err(Error::input(at, "the curve has zero length"));
-        }
-        let rel = |v: f64, name: &str| -> Result<f64> {
-            if v.is_finite() && v > 0.0 {
-                Ok(v / len)
-            } else {
-                Err(Error::input(
-                    at,
-                    format!("{name} spacing must be positive, got {v}"),
-                ))
-            }
-        };
-        let dist = match &spec.distribution {
-            DistributionSpec::Uniform => geo::Distribution::Uniform,
-            DistributionSpec::Geometric { first } => geo::Distribution::Geometric {
-                first: rel(*first, "first")?,
-            },
-            DistributionSpec::Vinokur { first, last } => geo::Distribution::Vinokur {
-                first: first.map(|v| rel(v, "first")).transpose()?,
-                last: last.map(|v| rel(v, "last")).transpose()?,
-            },
-        };
-        let sigma = dist.sample(n).map_err(geo_err)?;
+        let sigma = spec.distribution.sample(n, map.length(), at)?;
         // `first` belongs to the edge's first node; a reversed edge starts at the curve's end,
         // so node k sits at curve arclength 1 − σ_k.
         let at_sigma = |sig: &[f64]| -> Vec<Vec3> {
@@ -478,7 +494,7 @@ fn origin_of(o: &Option<Vec<f64>>, at: &str) -> Result<Vec3> {
 }
 
 /// A point from `[x, y]` or `[x, y, z]`, finite.
-fn point(v: &[f64], at: &str, what: &str) -> Result<Vec3> {
+pub(crate) fn point(v: &[f64], at: &str, what: &str) -> Result<Vec3> {
     let p = match v {
         [x, y] => Vec3::new(*x, *y, 0.0),
         [x, y, z] => Vec3::new(*x, *y, *z),

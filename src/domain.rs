@@ -41,6 +41,9 @@ pub fn control_for<const D: usize>(b: &Boundary2<D>, kind: ControlKind) -> Contr
 
 /// Grids one block: transfinite start (or `start`, whose boundary nodes are replaced by
 /// `b`'s), control functions of `kind`, Picard iteration of [24].
+///
+/// Without `start`, and with nested iteration on (`params.nested_for(solver.name())`: by
+/// default with the multigrid solver), the block is solved by [`crate::nested`] instead.
 pub fn grid_block<const D: usize>(
     b: &Boundary2<D>,
     start: Option<Grid2<D>>,
@@ -49,6 +52,9 @@ pub fn grid_block<const D: usize>(
     params: &PicardParams,
     place: &str,
 ) -> Result<BlockResult<D>> {
+    if start.is_none() && params.nested_for(solver.name()) {
+        return crate::nested::grid_block_nested(b, kind, solver, params, place).map(|r| r.0);
+    }
     let start = start.unwrap_or_else(|| transfinite(b));
     let ctrl = control_for(b, kind);
     let (grid, picard) = poisson2d::solve_from(b, start, &ctrl, solver, params, place)?;

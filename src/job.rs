@@ -10,6 +10,7 @@ use crate::linsolve;
 use crate::orthogonal::grid_block_with;
 use crate::poisson2d::PicardInfo;
 use crate::quality::{self, QualityReport};
+use crate::surfgrid::{grid_surface_orthogonal, StepTimes};
 use crate::transform::transfinite;
 use crate::{Error, Result};
 use serde::Serialize;
@@ -24,7 +25,12 @@ pub struct BlockReport {
     pub nj: usize,
     /// Wall-clock seconds of the block's generation.
     pub seconds: f64,
-    pub picard: PicardInfo,
+    /// The Picard history (planar and minimal blocks).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub picard: Option<PicardInfo>,
+    /// Seconds per step of the Section 4 pipeline (surface blocks; no Picard iteration).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface_steps: Option<StepTimes>,
     pub quality: QualityReport,
 }
 
@@ -94,21 +100,27 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             .map_err(|m| Error::input(format!("{}: [solver]", case.path.display()), m))?;
         let (ctrl, params) = (spec.solver.control, &spec.solver.picard);
         let orth = case.block_orthogonal(k)?;
+        let mut surface_steps = None;
         let (block, picard, quality) = match spec.blocks[k].kind {
             BlockKind::Planar => {
                 let b = case.planar_boundary(k)?;
                 let r = grid_block_with(&b, None, orth, ctrl, solver.as_mut(), params, &place)?;
                 let q = quality::quality2d(&r.grid);
-                (Block::Planar(r.grid), r.picard, q)
+                (Block::Planar(r.grid), Some(r.picard), q)
             }
             BlockKind::Minimal => {
                 let b = case.minimal_boundary(k)?;
                 let r = grid_block_with(&b, None, orth, ctrl, solver.as_mut(), params, &place)?;
                 let q = quality::quality_surface(&r.grid);
-                (Block::Surface(r.grid), r.picard, q)
+                (Block::Surface(r.grid), Some(r.picard), q)
             }
             BlockKind::Surface => {
-                return Err(Error::input(place, "surface blocks are not supported yet"));
+                let (surface, uv) = case.surface_block(k)?;
+                let r =
+                    grid_surface_orthogonal(surface.as_ref(), &uv, orth, solver.as_mut(), &place)?;
+                let q = quality::quality_surface(&r.grid);
+                surface_steps = Some(r.times);
+                (Block::Surface(r.grid), None, q)
             }
         };
         let dims = block.dims();
@@ -118,6 +130,7 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             nj: dims[1],
             seconds: t0.elapsed().as_secs_f64(),
             picard,
+            surface_steps,
             quality,
         };
         progress(&rep);

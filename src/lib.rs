@@ -2,6 +2,7 @@
 pub mod arclength;
 pub mod blend;
 pub mod boundary;
+pub mod cad;
 pub mod case;
 pub mod control;
 pub mod domain;
@@ -13,6 +14,7 @@ pub mod io;
 pub mod job;
 pub mod linsolve;
 pub mod multigrid;
+pub mod nested;
 pub mod orthogonal;
 pub mod plot;
 pub mod poisson2d;

@@ -59,7 +59,7 @@ pub fn parse_edges<S: AsRef<str>>(names: &[S], place: &str) -> Result<[bool; 4]>
 
 /// The new edge functions of eq. [46] from the harmonic (s, t) on grid `g`: s along E3/E4,
 /// t along E1/E2. They must increase strictly along each edge.
-fn edge_functions<const D: usize>(
+pub fn edge_functions<const D: usize>(
     g: &Grid2<D>,
     s: &[f64],
     t: &[f64],

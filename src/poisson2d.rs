@@ -27,6 +27,17 @@ pub struct PicardParams {
     pub linear_tolerance: f64,
     /// At most this many cycles per linear solve (iterative solvers). Default 100.
     pub linear_max_iter: usize,
+    /// Forcing term of the inexact Picard iteration (iterative solvers): a step's linear
+    /// system is solved only to the relative residual
+    /// `η = clamp(0.5 ρ, linear_tolerance, linear_forcing)`, ρ = the last ratio of
+    /// successive Picard updates (the observed Picard contraction), like an inexact Newton
+    /// forcing term: a linear error much below the Picard error would be wasted. The
+    /// fixed point is unchanged (the linear error is relative to the Picard residual, which
+    /// vanishes there). 0 solves every step to `linear_tolerance`. Default 0.1.
+    pub linear_forcing: f64,
+    /// Nested iteration (`crate::nested`): solve on coarser grids first. `None` (default)
+    /// means on with the multigrid solver, off with the direct one.
+    pub nested: Option<bool>,
 }
 
 impl Default for PicardParams {
@@ -36,7 +47,16 @@ impl Default for PicardParams {
             max_steps: 200,
             linear_tolerance: 1e-10,
             linear_max_iter: 100,
+            linear_forcing: 0.1,
+            nested: None,
         }
+    }
+}
+
+impl PicardParams {
+    /// Whether nested iteration is used with the linear solver called `solver_name`.
+    pub fn nested_for(&self, solver_name: &str) -> bool {
+        self.nested.unwrap_or(solver_name == "multigrid")
     }
 }
 
@@ -156,40 +176,84 @@ pub fn assemble<const D: usize>(
 /// its diagonal 2(P + R) and by the domain diameter — a dimensionless number comparable to a
 /// relative node update.
 pub fn residual<const D: usize>(x: &Grid2<D>, a: &Stencil9, rhs: &[Vec<f64>; D]) -> f64 {
+    residual_scaled(x, a, rhs, x.diameter(), None)
+}
+
+/// [`residual`] with the diameter given; rows in parallel, straight from the full grid (the
+/// boundary couplings of `a` are zero after [`assemble`], so boundary values drop out). With
+/// `out`, also stores `b − A x` per coordinate (interior numbering).
+fn residual_scaled<const D: usize>(
+    x: &Grid2<D>,
+    a: &Stencil9,
+    rhs: &[Vec<f64>; D],
+    diam: f64,
+    out: Option<&mut [Vec<f64>; D]>,
+) -> f64 {
     let (ni, nx) = (x.ni(), a.nx());
-    let diam = x.diameter();
-    let mut worst = 0.0f64;
-    let mut u = vec![0.0; a.len()];
-    let mut r = vec![0.0; a.len()];
-    for (c, b) in rhs.iter().enumerate() {
-        gather_interior(x.coord(c), ni, nx, &mut u);
-        a.residual(b, &u, &mut r);
-        for (rv, row) in r.iter().zip(a.coefs()) {
-            worst = worst.max((rv / row[crate::stencil::dir::C]).abs());
+    let xs = x.coords();
+    let row = |jj: usize, arow: &[[f64; 9]], mut out: [Option<&mut [f64]>; D]| {
+        let mut w = 0.0f64;
+        for (ii, st) in arow.iter().enumerate() {
+            let (p, n) = (ii + nx * jj, ii + 1 + ni * (jj + 1));
+            for (c, (xc, b)) in xs.iter().zip(rhs.iter()).enumerate() {
+                let (lo, mid, hi) = (&xc[n - ni - 1..], &xc[n - 1..], &xc[n + ni - 1..]);
+                let ax = st[0] * lo[0]
+                    + st[1] * lo[1]
+                    + st[2] * lo[2]
+                    + st[3] * mid[0]
+                    + st[4] * mid[1]
+                    + st[5] * mid[2]
+                    + st[6] * hi[0]
+                    + st[7] * hi[1]
+                    + st[8] * hi[2];
+                let r = b[p] - ax;
+                if let Some(o) = out[c].as_deref_mut() {
+                    o[ii] = r;
+                }
+                w = w.max((r / st[4]).abs());
+            }
         }
-    }
+        w
+    };
+    let rows = a.coefs().par_chunks(nx).enumerate();
+    let worst = match out {
+        None => rows
+            .map(|(jj, arow)| row(jj, arow, std::array::from_fn(|_| None)))
+            .reduce(|| 0.0, f64::max),
+        Some(out) => {
+            let mut chunks: Vec<Vec<&mut [f64]>> = (0..a.ny()).map(|_| Vec::new()).collect();
+            for o in out.iter_mut() {
+                for (jj, ch) in o.chunks_mut(nx).enumerate() {
+                    chunks[jj].push(ch);
+                }
+            }
+            rows.zip(chunks.into_par_iter())
+                .map(|((jj, arow), ch)| {
+                    let mut it = ch.into_iter();
+                    row(jj, arow, std::array::from_fn(|_| it.next()))
+                })
+                .reduce(|| 0.0, f64::max)
+        }
+    };
     worst / diam
 }
 
-fn gather_interior(full: &[f64], ni: usize, nx: usize, out: &mut [f64]) {
-    for (jj, row) in out.chunks_mut(nx).enumerate() {
-        let base = ni * (jj + 1) + 1;
-        row.copy_from_slice(&full[base..base + nx]);
-    }
-}
-
-fn scatter_interior(inner: &[f64], ni: usize, nx: usize, full: &mut [f64]) {
+fn add_interior(inner: &[f64], ni: usize, nx: usize, full: &mut [f64]) {
     for (jj, row) in inner.chunks(nx).enumerate() {
         let base = ni * (jj + 1) + 1;
-        full[base..base + nx].copy_from_slice(row);
+        for (f, d) in full[base..base + nx].iter_mut().zip(row) {
+            *f += d;
+        }
     }
 }
 
 /// Solves the grid system [24] by Picard iteration [43, 44] from the start grid `x` (whose
 /// boundary nodes are the Dirichlet data and stay untouched).
 ///
-/// `place` names the block in errors. Non-convergence is not an error: it is reported in the
-/// returned [`PicardInfo`].
+/// Each step's linear systems start from the current iterate and are solved to the relative
+/// residual of the forcing term (see [`PicardParams::linear_forcing`]); the coordinates are
+/// solved in parallel with the operator's one setup. `place` names the block in errors.
+/// Non-convergence is not an error: it is reported in the returned [`PicardInfo`].
 pub fn solve<const D: usize>(
     x: &mut Grid2<D>,
     ctrl: &Control2,
@@ -197,6 +261,22 @@ pub fn solve<const D: usize>(
     params: &PicardParams,
     place: &str,
 ) -> Result<PicardInfo> {
+    solve_timed(x, ctrl, solver, params, 0.0, place).map(|(info, _)| info)
+}
+
+/// [`solve`], also returning the shortest time (seconds) of one evaluation of the residual of
+/// [24] with its assembly on this grid, measured at every step: the work unit of
+/// `crate::nested`. With `relative_stop > 0` the iteration also stops (converged) once the
+/// update falls below `relative_stop` times the first update: enough for a coarse level of
+/// nested iteration, whose own discretization error dwarfs the Picard tolerance.
+pub(crate) fn solve_timed<const D: usize>(
+    x: &mut Grid2<D>,
+    ctrl: &Control2,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    relative_stop: f64,
+    place: &str,
+) -> Result<(PicardInfo, f64)> {
     let (ni, nj) = (x.ni(), x.nj());
     if ni < 3 || nj < 3 {
         return Err(Error::input(place, "a block needs at least 3 × 3 nodes"));
@@ -213,32 +293,46 @@ pub fn solve<const D: usize>(
             "the algebraic transformation is degenerate (non-finite control functions)",
         ));
     }
+    let solve_err = |source| Error::Solve {
+        place: place.to_string(),
+        source,
+    };
     let (nx, ny) = (ni - 2, nj - 2);
     let diam = x.diameter();
     let mut a = Stencil9::zeros(nx, ny);
     let mut rhs: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
+    // residuals, then corrections, of the coordinates (interior numbering)
+    let mut r: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
     let mut u: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
-    let ctl = SolveControl {
-        rel_tol: params.linear_tolerance,
-        max_iter: params.linear_max_iter,
-    };
-    let mut history = Vec::new();
+    let mut eval_secs = f64::INFINITY;
+    let mut evaluate =
+        |x: &Grid2<D>, a: &mut Stencil9, rhs: &mut [Vec<f64>; D], r: &mut [Vec<f64>; D]| {
+            let t0 = std::time::Instant::now();
+            assemble(x, ctrl, a, rhs);
+            let res = residual_scaled(x, a, rhs, diam, Some(r));
+            eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
+            res
+        };
+    let mut history: Vec<PicardStep> = Vec::new();
     let mut converged = false;
     for _ in 0..params.max_steps {
-        assemble(x, ctrl, &mut a, &mut rhs);
-        let res = residual(x, &a, &rhs);
-        solver.setup(&a).map_err(|source| Error::Solve {
-            place: place.to_string(),
-            source,
-        })?;
-        for (c, uc) in u.iter_mut().enumerate() {
-            gather_interior(x.coord(c), ni, nx, uc);
-        }
+        let res = evaluate(x, &mut a, &mut rhs, &mut r);
+        solver.setup(&a).map_err(solve_err)?;
+        let ctl = SolveControl {
+            rel_tol: forcing(params, &history),
+            max_iter: params.linear_max_iter,
+        };
+        // The correction form A δ = b − A x_k, δ₀ = 0, is the solve from the current iterate;
+        // it keeps the cycles' round-off relative to δ instead of x (near convergence the
+        // residual of x_k is itself at round-off level, and a solve for x would stagnate).
         let solver_ref: &dyn LinearSolver = solver;
         let infos: Vec<_> = u
             .par_iter_mut()
-            .zip(rhs.par_iter())
-            .map(|(uc, bc)| solver_ref.solve(bc, uc, &ctl))
+            .zip(r.par_iter())
+            .map(|(uc, rc)| {
+                uc.fill(0.0);
+                solver_ref.solve(rc, uc, &ctl)
+            })
             .collect();
         let mut step = PicardStep {
             update: 0.0,
@@ -247,48 +341,63 @@ pub fn solve<const D: usize>(
             linear_residual: Vec::with_capacity(D),
         };
         for info in infos {
-            let info = info.map_err(|source| Error::Solve {
-                place: place.to_string(),
-                source,
-            })?;
+            let info = info.map_err(solve_err)?;
             step.linear_iterations.push(info.iterations);
             step.linear_residual
                 .push(info.residual_history.last().copied().unwrap_or(0.0));
         }
-        let mut upd = 0.0f64;
+        let upd = u
+            .par_iter()
+            .map(|uc| uc.iter().fold(0.0f64, |m, v| m.max(v.abs())))
+            .reduce(|| 0.0, f64::max);
         for (c, uc) in u.iter().enumerate() {
-            let full = x.coord_mut(c);
-            for (jj, row) in uc.chunks(nx).enumerate() {
-                let base = ni * (jj + 1) + 1;
-                for (v, o) in row.iter().zip(&full[base..base + nx]) {
-                    upd = upd.max((v - o).abs());
-                }
-            }
-            scatter_interior(uc, ni, nx, full);
+            add_interior(uc, ni, nx, x.coord_mut(c));
         }
         step.update = upd / diam;
         history.push(step);
-        if !x.all_finite() {
-            return Err(Error::Solve {
-                place: place.to_string(),
-                source: crate::linsolve::SolveError::Diverged(f64::NAN),
-            });
+        let upd = upd / diam;
+        if !upd.is_finite() || !x.all_finite() {
+            return Err(solve_err(crate::linsolve::SolveError::Diverged(f64::NAN)));
         }
-        if upd / diam < params.tolerance {
+        let first = history.first().map_or(0.0, |h| h.update);
+        if upd < params.tolerance.max(relative_stop * first) {
             converged = true;
             break;
         }
     }
-    assemble(x, ctrl, &mut a, &mut rhs);
-    let final_residual = residual(x, &a, &rhs);
-    Ok(PicardInfo {
+    let final_residual = evaluate(x, &mut a, &mut rhs, &mut r);
+    let info = PicardInfo {
         linear_solver: solver.name().to_string(),
         steps: history.len(),
         converged,
         tolerance: params.tolerance,
         final_residual,
         history,
-    })
+    };
+    Ok((info, eval_secs))
+}
+
+/// The relative linear tolerance of the next Picard step: `linear_tolerance` without forcing,
+/// else `clamp(max(0.5 ρ, 0.1 tol / u), linear_tolerance, linear_forcing)` with ρ the last
+/// observed Picard contraction and u = ρ · (last update) the predicted next update: no more
+/// accurate than the Picard error, and no more than a tenth of the Picard tolerance in
+/// absolute terms (which also keeps the request above round-off near convergence).
+/// `linear_forcing` for the first two steps.
+fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
+    let (floor, cap) = (params.linear_tolerance, params.linear_forcing);
+    if cap <= floor {
+        return floor;
+    }
+    match history {
+        [.., a, b] if a.update > 0.0 && b.update > 0.0 => {
+            let rho = b.update / a.update;
+            let predicted = rho * b.update;
+            (0.5 * rho)
+                .max(0.1 * params.tolerance / predicted)
+                .clamp(floor, cap)
+        }
+        _ => cap,
+    }
 }
 
 /// Convenience: the start grid with the boundary of `b` and the solve of [24] from it.

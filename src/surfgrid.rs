@@ -10,11 +10,13 @@
 //!    (u, v), evaluate the surface.
 
 use crate::arclength::EdgeFunctions;
+use crate::blend::hermite_blend;
 use crate::boundary::Boundary2;
 use crate::grid::{Edge, Grid2};
-use crate::harmonic::{solve_harmonic, EdgeCondition};
+use crate::harmonic::harmonic_st;
 use crate::inversion::QuadMesh;
 use crate::linsolve::LinearSolver;
+use crate::orthogonal::edge_functions;
 use crate::transform::{straight_line, ParamGrid};
 use crate::{Error, Result};
 use ellipgrid_geometry::{ArclengthMap, Curve, Surface, SurfaceEdge, Vec3};
@@ -145,6 +147,18 @@ pub fn grid_surface(
     solver: &mut dyn LinearSolver,
     place: &str,
 ) -> Result<SurfaceResult> {
+    grid_surface_orthogonal(surface, uv, [false; 4], solver, place)
+}
+
+/// Section 4.2 with orthogonality at the chosen edges (E1..E4): Neumann conditions in step 3
+/// and the Hermite-blended target [47, 48] in step 4 (METHOD.md §5, orthogonal variant).
+pub fn grid_surface_orthogonal(
+    surface: &dyn Surface,
+    uv: &[Vec<[f64; 2]>; 4],
+    orthogonal: [bool; 4],
+    solver: &mut dyn LinearSolver,
+    place: &str,
+) -> Result<SurfaceResult> {
     check_uv(uv, place)?;
     let mut times = StepTimes::default();
     let t0 = Instant::now();
@@ -157,14 +171,19 @@ pub fn grid_surface(
     let boundary = Boundary2::new(edges, place)?;
     boundary.apply_to(&mut initial);
     times.initial_grid = t0.elapsed().as_secs_f64();
-    // Step 3: Laplace–Beltrami for s and t on x^I, Dirichlet = boundary arclength.
+    // Step 3: Laplace–Beltrami for s and t on x^I: Dirichlet = boundary arclength, or zero
+    // Neumann flux at orthogonal edges.
     let t1 = Instant::now();
-    let ef = EdgeFunctions::arclength(&boundary);
-    let (si, ti) = harmonic_st(&initial, &ef, solver, place)?;
+    let (si, ti) = harmonic_st(&initial, orthogonal, solver, place)?;
     times.laplace_beltrami = t1.elapsed().as_secs_f64();
-    // Step 4: the target grid in P_st.
+    // Step 4: the target grid in P_st, with the edge functions of step 3 [46].
     let t2 = Instant::now();
-    let target = straight_line(&ef);
+    let target = if orthogonal.iter().any(|&o| o) {
+        let ef = edge_functions(&initial, &si, &ti, place)?;
+        hermite_blend(&ef, orthogonal, place)?
+    } else {
+        straight_line(&EdgeFunctions::arclength(&boundary))
+    };
     times.target = t2.elapsed().as_secs_f64();
     // Step 5: inversion.
     let t3 = Instant::now();
@@ -180,39 +199,6 @@ pub fn grid_surface(
         uv: uvs,
         times,
     })
-}
-
-/// Solves the two Laplace–Beltrami problems of step 3 with Dirichlet arclength data.
-pub fn harmonic_st(
-    x: &Grid2<3>,
-    ef: &EdgeFunctions,
-    solver: &mut dyn LinearSolver,
-    place: &str,
-) -> Result<(Vec<f64>, Vec<f64>)> {
-    let (ni, nj) = (x.ni(), x.nj());
-    let s = solve_harmonic(
-        x,
-        &[
-            EdgeCondition::Dirichlet(vec![0.0; nj]),
-            EdgeCondition::Dirichlet(vec![1.0; nj]),
-            EdgeCondition::Dirichlet(ef.s_e3.clone()),
-            EdgeCondition::Dirichlet(ef.s_e4.clone()),
-        ],
-        solver,
-        place,
-    )?;
-    let t = solve_harmonic(
-        x,
-        &[
-            EdgeCondition::Dirichlet(ef.t_e1.clone()),
-            EdgeCondition::Dirichlet(ef.t_e2.clone()),
-            EdgeCondition::Dirichlet(vec![0.0; ni]),
-            EdgeCondition::Dirichlet(vec![1.0; ni]),
-        ],
-        solver,
-        place,
-    )?;
-    Ok((s, t))
 }
 
 /// Step 5: (u, v) at every target node by locating it in the (s^I, t^I) mesh and

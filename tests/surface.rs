@@ -5,7 +5,7 @@ use ellipgrid::grid::Edge;
 use ellipgrid::linsolve::direct::DirectLu;
 use ellipgrid::surfgrid::{edge_params, grid_surface};
 use ellipgrid::Grid2;
-use ellipgrid_geometry::{uniform, HermiteSurface, Surface, TanhBump, Vec3};
+use ellipgrid_geometry::{uniform, Curve, HermiteSurface, Surface, SurfacePoint, TanhBump, Vec3};
 
 /// Deterministic pseudo-random numbers in [0, 1).
 fn rng(mut seed: u64) -> impl FnMut() -> f64 {
@@ -152,4 +152,164 @@ fn tanh_surface_grid_does_not_depend_on_the_net() {
         let (max, rms) = (w[0].2 / w[1].2, w[0].3 / w[1].3);
         assert!(max > 3.2 && rms > 3.2, "ratios {max} {rms}: {diffs:?}");
     }
+}
+
+/// A planar domain parametrized by the transfinite map of its four edge curves (a Surface
+/// whose second derivatives are not needed by the pipeline).
+struct Transfinite {
+    e: [Box<dyn Curve>; 4],
+}
+
+impl Surface for Transfinite {
+    fn eval(&self, u: f64, v: f64) -> SurfacePoint {
+        let [e1, e2, e3, e4] = &self.e;
+        let (c00, c10, c01, c11) = (e3.point(0.0), e3.point(1.0), e4.point(0.0), e4.point(1.0));
+        let x =
+            e1.point(v) * (1.0 - u) + e2.point(v) * u + e3.point(u) * (1.0 - v) + e4.point(u) * v
+                - (c00 * (1.0 - u) * (1.0 - v)
+                    + c10 * u * (1.0 - v)
+                    + c01 * (1.0 - u) * v
+                    + c11 * u * v);
+        let xu = e2.point(v) - e1.point(v) + e3.derivative(u) * (1.0 - v) + e4.derivative(u) * v
+            - ((c10 - c00) * (1.0 - v) + (c11 - c01) * v);
+        let xv = e1.derivative(v) * (1.0 - u) + e2.derivative(v) * u + e4.point(u)
+            - e3.point(u)
+            - ((c01 - c00) * (1.0 - u) + (c11 - c10) * u);
+        let z = Vec3::zeros();
+        SurfacePoint {
+            x,
+            xu,
+            xv,
+            xuu: z,
+            xuv: z,
+            xvv: z,
+        }
+    }
+}
+
+#[test]
+fn section_4_and_section_2_give_the_same_planar_grid() {
+    use ellipgrid::case::LoadedCase;
+    use ellipgrid::domain::{grid_block, ControlKind};
+    use ellipgrid::poisson2d::PicardParams;
+    use ellipgrid_geometry::{Arc, Line, Spline};
+    // The curved quadrilateral of examples/curved.toml.
+    let v = |x: f64, y: f64| Vec3::new(x, y, 0.0);
+    let dom = Transfinite {
+        e: [
+            Box::new(Line::new(v(0.0, 0.0), v(-0.4, 1.5))),
+            Box::new(Line::new(v(2.0, 0.0), v(2.5, 1.3))),
+            Box::new(Arc::through(v(0.0, 0.0), v(1.0, 0.35), v(2.0, 0.0)).unwrap()),
+            Box::new(
+                Spline::new(vec![v(-0.4, 1.5), v(0.6, 1.9), v(1.6, 1.6), v(2.5, 1.3)]).unwrap(),
+            ),
+        ],
+    };
+    let case = LoadedCase::read(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/curved.toml"),
+    )
+    .unwrap();
+    let mut diffs = Vec::new();
+    for n in [17, 33, 65, 129] {
+        let (g4, _) = grid(&dom, n);
+        let mut c = case.clone();
+        c.case.blocks[0].ni = n;
+        c.case.blocks[0].nj = n;
+        let b = c.planar_boundary(0).unwrap();
+        let g2 = grid_block(
+            &b,
+            None,
+            ControlKind::Algebraic,
+            &mut DirectLu::new(),
+            &PicardParams::default(),
+            "s2",
+        )
+        .unwrap()
+        .grid;
+        let mut sq = 0.0;
+        let mut mx = 0.0f64;
+        for p in 0..g2.len() {
+            let d = ((g4.coord(0)[p] - g2.coord(0)[p]).powi(2)
+                + (g4.coord(1)[p] - g2.coord(1)[p]).powi(2))
+            .sqrt();
+            sq += d * d;
+            mx = mx.max(d);
+            if g2.is_boundary(p % n, p / n) {
+                assert!(d < 1e-9, "boundary nodes differ by {d}");
+            }
+        }
+        diffs.push((n, mx, (sq / g2.len() as f64).sqrt()));
+    }
+    eprintln!("(n, max, rms) difference Section 4 vs Section 2: {diffs:?}");
+    for w in diffs.windows(2) {
+        let rms = w[0].2 / w[1].2;
+        assert!((3.0..5.0).contains(&rms), "rms ratio {rms}: {diffs:?}");
+    }
+}
+
+#[path = "../examples/common/wing_pylon_shape.rs"]
+mod wing_pylon;
+
+#[test]
+fn wing_pylon_grid_is_fold_free_and_follows_the_boundary_not_the_net() {
+    use ellipgrid::case::LoadedCase;
+    use ellipgrid::quality::quality_surface;
+    let case = LoadedCase::read(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/wing_pylon.toml"),
+    )
+    .unwrap();
+    let (net, uv) = case.surface_block(0).unwrap();
+    let r = grid_surface(net.as_ref(), &uv, &mut DirectLu::new(), "wp").unwrap();
+    let q = quality_surface(&r.grid);
+    assert_eq!(q.folded_cells, 0, "{q}");
+    // The same shape as a fine net with uniformly spaced control points: the grids agree to a
+    // small fraction of the spacing, while the initial grids (which follow each net) do not.
+    let (ni, nj) = (161, 97);
+    let fine = HermiteSurface::new(
+        ni,
+        nj,
+        wing_pylon::net(ni, nj, false)
+            .into_iter()
+            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .collect(),
+    )
+    .unwrap();
+    let sig = |e: Edge| {
+        let n = if matches!(e, Edge::E3 | Edge::E4) {
+            r.grid.ni()
+        } else {
+            r.grid.nj()
+        };
+        // the same boundary nodes: distribute by the case's spacings on the fine net
+        let spec = match e {
+            Edge::E1 => &case.case.blocks[0].e1,
+            Edge::E2 => &case.case.blocks[0].e2,
+            Edge::E3 => &case.case.blocks[0].e3,
+            Edge::E4 => &case.case.blocks[0].e4,
+        };
+        let len = ellipgrid::surfgrid::edge_length(&fine, e);
+        spec.distribution.sample(n, len, "wp").unwrap()
+    };
+    let uv2 = Edge::ALL.map(|e| edge_params(&fine, e, &sig(e)));
+    let r2 = grid_surface(&fine, &uv2, &mut DirectLu::new(), "wp-fine").unwrap();
+    let d = |a: &Grid2<3>, b: &Grid2<3>| {
+        (0..a.len())
+            .map(|p| {
+                (0..3)
+                    .map(|c| (a.coord(c)[p] - b.coord(c)[p]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .fold(0.0, f64::max)
+    };
+    let (dg, di) = (d(&r.grid, &r2.grid), d(&r.initial, &r2.initial));
+    eprintln!(
+        "wing-pylon: final grids differ by {dg:.3e}, initial grids by {di:.3e}, min spacing {:.3e}",
+        q.min_spacing
+    );
+    assert!(di > 10.0 * dg, "initial {di} final {dg}");
+    assert!(
+        dg < 0.25 * q.min_spacing.max(1e-3),
+        "final grids differ by {dg}"
+    );
 }

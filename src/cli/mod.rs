@@ -4,6 +4,7 @@
 mod convert;
 mod plot;
 mod print;
+mod step;
 
 use clap::{Parser, Subcommand};
 use ellipgrid::case::LoadedCase;
@@ -94,6 +95,8 @@ enum Command {
     Convert(convert::ConvertArgs),
     /// Draw a grid as a picture (.png or .svg): grid lines, close-ups, quality colours.
     Plot(plot::PlotArgs),
+    /// STEP files: list and grid B-spline faces, export a control net as a B-spline face.
+    Step(step::StepArgs),
 }
 
 /// Parses the command line and runs it.
@@ -118,6 +121,7 @@ pub fn main() -> ExitCode {
         Command::Check { grid, report } => check(&grid, report.as_deref()),
         Command::Convert(a) => convert::convert(&a),
         Command::Plot(a) => plot::plot(&a),
+        Command::Step(a) => step::step(&a),
         Command::Smooth {
             input,
             output,
@@ -269,7 +273,11 @@ fn smooth(
                     .enumerate()
                     .map(|(k, b)| (format!("block{}", k + 1), b.clone()))
                     .collect();
-                written.extend(job::write_outputs(&named, std::slice::from_ref(p), &file.format)?);
+                written.extend(job::write_outputs(
+                    &named,
+                    std::slice::from_ref(p),
+                    &file.format,
+                )?);
             }
         }
         if !quiet {

@@ -20,7 +20,16 @@ pub fn block(b: &BlockReport) {
         "block '{}' ({} × {} nodes), {:.3} s",
         b.name, b.ni, b.nj, b.seconds
     );
-    history(&b.picard);
+    if let Some(p) = &b.picard {
+        history(p);
+    }
+    if let Some(t) = &b.surface_steps {
+        println!(
+            "  Section 4 pipeline: initial grid {:.3} s, Laplace–Beltrami {:.3} s, target {:.3} s, \
+             inversion {:.3} s",
+            t.initial_grid, t.laplace_beltrami, t.target, t.inversion
+        );
+    }
     println!("{}", b.quality);
 }
 
@@ -76,14 +85,15 @@ pub fn history(p: &PicardInfo) {
 /// Warns about blocks whose Picard iteration did not converge.
 pub fn not_converged(r: &RunReport) {
     for b in &r.blocks {
-        if !b.picard.converged {
+        let Some(p) = &b.picard else { continue };
+        if !p.converged {
             eprintln!(
                 "warning: block '{}': Picard iteration stopped after {} steps at update {:.3e} \
                  (tolerance {:.1e})",
                 b.name,
-                b.picard.steps,
-                b.picard.history.last().map_or(f64::NAN, |s| s.update),
-                b.picard.tolerance
+                p.steps,
+                p.history.last().map_or(f64::NAN, |s| s.update),
+                p.tolerance
             );
         }
     }

@@ -3,6 +3,7 @@
 
 pub mod direct;
 
+use crate::multigrid::{MgParams, Multigrid};
 use crate::stencil::Stencil9;
 
 /// How accurately one linear system is to be solved.
@@ -60,10 +61,77 @@ pub trait LinearSolver: Send + Sync {
     fn name(&self) -> &'static str;
 }
 
-/// The linear solver called `name` in case files: "direct" or "multigrid".
+/// The linear solver called `name` in case files: "direct" (sparse LU, the reference) or
+/// "multigrid" ([`MultigridSafe`] with the default [`MgParams`]: V(1,1) cycles with
+/// alternating zebra line Gauss–Seidel, Bi-CGSTAB as the fallback; the default of case files).
 pub fn by_name(name: &str) -> Result<Box<dyn LinearSolver>, String> {
     match name {
         "direct" => Ok(Box::new(direct::DirectLu::new())),
-        _ => Err(format!("linear solver '{name}': expected \"direct\"")),
+        "multigrid" => Ok(Box::new(MultigridSafe::new(MgParams::default()))),
+        _ => Err(format!(
+            "linear solver '{name}': expected \"direct\" or \"multigrid\""
+        )),
+    }
+}
+
+/// Black-box multigrid ([`Multigrid`]) with a fallback: plain cycles first and, if they
+/// diverge or run out of iterations, the solve again from the same initial guess by
+/// Bi-CGSTAB preconditioned with one cycle ([`crate::multigrid::bicgstab`]).
+///
+/// Why: the plain V-cycle contracts at 0.01–0.05 on the grid systems measured, but was seen
+/// to diverge on some boundary-layer systems (wall spacing 1e-5 at 1025² nodes) where the
+/// same cycle as a Bi-CGSTAB preconditioner still converges fast. `iterations` counts cycles
+/// (two per Bi-CGSTAB iteration, plus the plain cycles tried before the fallback).
+#[derive(Debug, Default)]
+pub struct MultigridSafe {
+    mg: Multigrid,
+    a: Option<Stencil9>,
+}
+
+impl MultigridSafe {
+    /// A solver with multigrid parameters `params` (see [`Multigrid::new`]).
+    pub fn new(params: MgParams) -> Self {
+        MultigridSafe {
+            mg: Multigrid::new(params),
+            a: None,
+        }
+    }
+
+    /// The multigrid solver inside.
+    pub fn multigrid(&self) -> &Multigrid {
+        &self.mg
+    }
+}
+
+impl LinearSolver for MultigridSafe {
+    fn setup(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+        match &mut self.a {
+            Some(own) if own.len() == a.len() && own.nx() == a.nx() => {
+                own.coefs_mut().copy_from_slice(a.coefs())
+            }
+            own => *own = Some(a.clone()),
+        }
+        self.mg.setup(a)
+    }
+
+    fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError> {
+        let a = self.a.as_ref().ok_or(SolveError::NotSetUp)?;
+        let mut y = x.to_vec();
+        let tried = match self.mg.solve(b, &mut y, ctl) {
+            Ok(info) if info.converged => {
+                x.copy_from_slice(&y);
+                return Ok(info);
+            }
+            Ok(info) => info.iterations,
+            Err(SolveError::Diverged(_)) => 0,
+            Err(e) => return Err(e),
+        };
+        let mut info = crate::multigrid::bicgstab(a, b, x, &self.mg, ctl)?;
+        info.iterations = tried + 2 * info.iterations;
+        Ok(info)
+    }
+
+    fn name(&self) -> &'static str {
+        "multigrid"
     }
 }

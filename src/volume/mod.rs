@@ -11,6 +11,7 @@
 //! | grid system [86–88], Picard | [`picard3d`] |
 //! | linear solvers (Bi-CGSTAB/ILU(0), faer LU) | [`solver3d`] |
 //! | quality report | [`quality3d`] |
+//! | prescribed first-cell heights at a wall face | [`wall`] |
 //! | case-file volume blocks, runs, smoothing | [`case3d`] |
 //!
 //! The entry point is [`grid_volume`].
@@ -23,6 +24,7 @@ pub mod picard3d;
 pub mod quality3d;
 pub mod solver3d;
 pub mod stencil19;
+pub mod wall;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 

@@ -135,6 +135,12 @@ impl ArclengthMap {
             }
         }
         let rule = rule();
+        // The curve's speed scale: panels are resolved to REL_TOL of it, so that a stretch of
+        // near-zero speed (where |x'| is all round-off) is not bisected without end.
+        let fscale = (0..=64)
+            .map(|k| curve.derivative(k as f64 / 64.0).norm())
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, f64::max);
         let mut panels = Vec::new();
         let mut s = 0.0;
         // Depth-first from the left, so panels come out ordered.
@@ -155,7 +161,7 @@ impl ArclengthMap {
             // Converged, or down at the round-off floor of the speed samples (without this
             // guard a noisy speed would be bisected to MIN_WIDTH everywhere).
             let floor = 16.0 * f64::EPSILON * f.iter().map(|v| v.abs()).sum::<f64>();
-            let resolved = tail <= REL_TOL * fmax || tail <= floor || !tail.is_finite();
+            let resolved = tail <= REL_TOL * fmax.max(fscale) || tail <= floor || !tail.is_finite();
             if resolved || b - a <= MIN_WIDTH {
                 let len: f64 = half * rule.weights.iter().zip(&f).map(|(w, v)| w * v).sum::<f64>();
                 panels.push(Panel { a, b, s_a: s, coef });

@@ -10,21 +10,28 @@
 //!   (curved faces keep the Coons patch: the minimal surface would change their shape); or
 //! - from a Plot3D file of six surface blocks F1 … F6 (`faces = { file, orient }`), each in the
 //!   face orientation of [`super::faces`] unless `orient` says otherwise.
+//!
+//! Files: this one (the `[[volume]]` table, faces from edges or from a file), [`coons`] (the
+//! Coons patches of the faces), [`run`] (generation, start grids and smoothing of volume blocks).
 
-use super::faces::{block_node, face_dims, Faces, FACE_NAMES};
-use super::quality3d::{quality3d, QualityReport3};
-use super::{by_name3, grid_volume, progress_enabled, transfinite};
-use crate::arclength::{normalized_arclength, EdgeFunctions};
+pub mod coons;
+pub mod run;
+
+pub use coons::{coons_eval, coons_face, coons_params};
+pub use run::{generate_volume, regrid_volume, start_volume, VolumeReport};
+
+use super::faces::{face_dims, Faces, FACE_NAMES};
+use super::wall::{correct_side_faces, parse_face};
 use crate::case::{EdgeSpec, LoadedCase};
 use crate::domain::{grid_block, ControlKind};
 use crate::io::Block;
 use crate::linsolve::direct::DirectLu;
-use crate::poisson2d::{PicardInfo, PicardParams};
-use crate::transform::straight_line;
-use crate::{Error, Grid2, Grid3, Result};
-use serde::{Deserialize, Serialize};
+use crate::poisson2d::PicardParams;
+use crate::transform::ParamGrid;
+use crate::{Error, Grid2, Result};
+use coons::{edge_of, is_planar};
+use serde::Deserialize;
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// `[[volume]]`: one volume block.
 #[derive(Clone, Debug, Deserialize)]
@@ -45,6 +52,9 @@ pub struct VolumeSpec {
     pub face_grids: Option<String>,
     /// Faces from a Plot3D file instead of edges.
     pub faces: Option<FacesFile>,
+    /// A wall face ("F1" … "F6") whose first-cell heights are held to the bilinear
+    /// interpolation of the first spacings of the four edges leaving it ([`super::wall`]).
+    pub wall: Option<String>,
     #[serde(rename = "E1")]
     pub e1: Option<EdgeSpec>,
     #[serde(rename = "E2")]
@@ -85,91 +95,6 @@ pub struct FacesFile {
     /// [`super::faces`]: "ab" (default: p = a, q = b), "ba" (transposed), with "-" before a
     /// letter for a reversed direction ("-ab", "a-b", "b-a", …).
     pub orient: Option<Vec<String>>,
-}
-
-/// Report of one volume block: the solve history and the 3D quality.
-#[derive(Clone, Debug, Serialize)]
-pub struct VolumeReport {
-    pub name: String,
-    pub ni: usize,
-    pub nj: usize,
-    pub nk: usize,
-    /// Wall-clock seconds of the block's generation.
-    pub seconds: f64,
-    pub picard: PicardInfo,
-    pub quality: QualityReport3,
-}
-
-/// Position of an edge: along axis `d`, at the hi/lo ends of the two other axes of node `n`.
-fn edge_of(d: usize, n: [usize; 3], dims: [usize; 3]) -> usize {
-    let o: Vec<usize> = (0..3).filter(|&a| a != d).collect();
-    let hi = |a: usize| usize::from(n[a] == dims[a] - 1 && n[a] > 0);
-    4 * d + hi(o[0]) + 2 * hi(o[1])
-}
-
-/// The Coons patch of face f from the twelve edge point lists (module docs).
-pub fn coons_face(f: usize, edges: &[Vec<[f64; 3]>; 12], dims: [usize; 3]) -> Grid2<3> {
-    let [na, nb] = face_dims(f, dims);
-    let ax = f / 2;
-    let (ta, tb) = match ax {
-        0 => (1, 2),
-        1 => (0, 2),
-        _ => (0, 1),
-    };
-    // Edges of the face: along a at b = 0 / end, along b at a = 0 / end.
-    let e_a0 = edge_of(ta, block_node(f, 0, 0, dims), dims);
-    let e_a1 = edge_of(ta, block_node(f, 0, nb - 1, dims), dims);
-    let e_b0 = edge_of(tb, block_node(f, 0, 0, dims), dims);
-    let e_b1 = edge_of(tb, block_node(f, na - 1, 0, dims), dims);
-    let (ba, ta_, lb, rb) = (&edges[e_a0], &edges[e_a1], &edges[e_b0], &edges[e_b1]);
-    let pg = straight_line(&EdgeFunctions {
-        s_e3: normalized_arclength(ba),
-        s_e4: normalized_arclength(ta_),
-        t_e1: normalized_arclength(lb),
-        t_e2: normalized_arclength(rb),
-    });
-    let (c00, c10, c01, c11) = (ba[0], ba[na - 1], ta_[0], ta_[na - 1]);
-    Grid2::<3>::from_fn(na, nb, |a, b| {
-        let (s, t) = pg.at(a, b);
-        std::array::from_fn(|c| {
-            (1.0 - s) * lb[b][c] + s * rb[b][c] + (1.0 - t) * ba[a][c] + t * ta_[a][c]
-                - ((1.0 - s) * (1.0 - t) * c00[c]
-                    + s * (1.0 - t) * c10[c]
-                    + (1.0 - s) * t * c01[c]
-                    + s * t * c11[c])
-        })
-    })
-}
-
-/// True if every point of a face lies within 1e-9 of its size of the plane through its
-/// corners' mean with the normal of its diagonals.
-fn is_planar(g: &Grid2<3>) -> bool {
-    let (ni, nj) = (g.ni(), g.nj());
-    let (p00, p10, p01, p11) = (
-        g.point(0, 0),
-        g.point(ni - 1, 0),
-        g.point(0, nj - 1),
-        g.point(ni - 1, nj - 1),
-    );
-    let d1: [f64; 3] = std::array::from_fn(|c| p11[c] - p00[c]);
-    let d2: [f64; 3] = std::array::from_fn(|c| p01[c] - p10[c]);
-    let n = [
-        d1[1] * d2[2] - d1[2] * d2[1],
-        d1[2] * d2[0] - d1[0] * d2[2],
-        d1[0] * d2[1] - d1[1] * d2[0],
-    ];
-    let nn = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    if nn == 0.0 {
-        return false;
-    }
-    let o: [f64; 3] = std::array::from_fn(|c| 0.25 * (p00[c] + p10[c] + p01[c] + p11[c]));
-    let tol = 1e-9 * g.diameter();
-    (0..nj).all(|j| {
-        (0..ni).all(|i| {
-            let p = g.point(i, j);
-            ((0..3).map(|c| (p[c] - o[c]) * n[c]).sum::<f64>() / nn).abs() <= tol
-        })
-    })
 }
 
 /// Maps a stored face grid onto the face orientation by an `orient` string (see
@@ -388,146 +313,40 @@ pub fn volume_faces(case: &LoadedCase, k: usize, params: &PicardParams) -> Resul
             }
         }
     }
-    Faces::new(faces, &place)
-}
-
-/// A terminal progress bar for a Picard solve, if enabled and stderr is a terminal.
-fn progress_bar(name: &str, max: usize) -> Option<indicatif::ProgressBar> {
-    use std::io::IsTerminal;
-    if !progress_enabled() || !std::io::stderr().is_terminal() {
-        return None;
-    }
-    let pb = indicatif::ProgressBar::new(max as u64);
-    pb.set_style(
-        indicatif::ProgressStyle::with_template("{prefix} Picard {pos:>3} {msg} [{elapsed}]")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
-    pb.set_prefix(format!("volume '{name}'"));
-    Some(pb)
-}
-
-/// Grids volume k of a case: faces, transfinite start, Picard solve, 3D quality.
-pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, VolumeReport)> {
-    let t0 = Instant::now();
-    let spec = &case.case;
-    let v = &spec.volumes[k];
-    let place = volume_place(case, k);
-    let name = volume_name(case, k);
-    let params = &spec.solver.picard;
-    let faces = volume_faces(case, k, params)?;
-    let mut solver = by_name3(&v.linear).map_err(|m| Error::input(&place, m))?;
-    let pb = progress_bar(&name, params.max_steps);
-    let mut cb = |n: usize, s: &crate::poisson2d::PicardStep| {
-        if let Some(pb) = &pb {
-            pb.set_position(n as u64);
-            pb.set_message(format!(
-                "update {:.2e} residual {:.2e}",
-                s.update, s.residual
-            ));
+    let faces = Faces::new(faces, &place)?;
+    match wall_face(v, &place)? {
+        None => Ok(faces),
+        Some(w) => {
+            let mut params_of = |f: usize| coons_params(f, &edges, dims);
+            let mut eval = |f: usize, pg: &ParamGrid, g: &Grid2<3>| -> Result<Grid2<3>> {
+                let coons = coons_eval(f, &edges, dims, pg);
+                if !(elliptic && is_planar(&coons)) {
+                    return Ok(coons);
+                }
+                let fp = format!("{place}, face {}", FACE_NAMES[f]);
+                let mut x = g.clone();
+                let ctrl = crate::control::Control2::from_algebraic(pg);
+                crate::poisson2d::solve(&mut x, &ctrl, &mut DirectLu::new(), params, &fp)?;
+                Ok(x)
+            };
+            correct_side_faces(&faces, w, &place, &mut params_of, &mut eval)
         }
-    };
-    let r = grid_volume(
-        &faces,
-        None,
-        spec.solver.control,
-        solver.as_mut(),
-        params,
-        &place,
-        &mut cb,
-    )?;
-    if let Some(pb) = pb {
-        pb.finish_and_clear();
     }
-    let q = quality3d(&r.grid);
-    let [ni, nj, nk] = r.grid.dims();
-    let rep = VolumeReport {
-        name: name.clone(),
-        ni,
-        nj,
-        nk,
-        seconds: t0.elapsed().as_secs_f64(),
-        picard: r.picard,
-        quality: q,
-    };
-    Ok((name, Block::Volume(r.grid), rep))
 }
 
-/// The transfinite start grid of volume k.
-pub fn start_volume(case: &LoadedCase, k: usize) -> Result<(String, Block)> {
-    let faces = volume_faces(case, k, &case.case.solver.picard)?;
-    Ok((volume_name(case, k), Block::Volume(transfinite(&faces))))
-}
-
-/// Regrids a volume block of an existing grid keeping its boundary nodes bit for bit: the
-/// interior is the start grid if it is fold-free, else the transfinite one. `linear`:
-/// "direct" (faer LU, used only up to 40 000 interior nodes; larger blocks use Bi-CGSTAB),
-/// "bicgstab" or "multigrid" (Bi-CGSTAB until a 3D multigrid exists). Returns the grid, the
-/// history, the start used and the solver's name.
-pub fn regrid_volume(
-    g: &Grid3,
-    linear: &str,
-    control: ControlKind,
-    params: &PicardParams,
-    place: &str,
-) -> Result<(Grid3, PicardInfo, String)> {
-    let d = g.dims();
-    if d.iter().any(|&n| n < 3) {
-        return Err(Error::input(
-            place,
-            format!("a volume block needs at least 3 nodes each way, got {d:?}"),
-        ));
-    }
-    if g.coords().iter().any(|c| c.iter().any(|v| !v.is_finite())) {
-        return Err(Error::input(place, "the block has non-finite coordinates"));
-    }
-    let faces = Faces::from_grid(g);
-    let inner = (d[0] - 2) * (d[1] - 2) * (d[2] - 2);
-    let name = match linear {
-        "direct" if inner <= 40_000 => "direct",
-        "direct" | "multigrid" | "bicgstab" => "bicgstab",
-        o => {
-            return Err(Error::input(
-                place,
-                format!("linear solver '{o}': expected direct, bicgstab or multigrid"),
-            ))
-        }
-    };
-    let mut solver = by_name3(name).map_err(|m| Error::input(place, m))?;
-    let valid = !quality3d(g).is_folded();
-    let start = valid.then(|| g.clone());
-    let pb = progress_bar(place, params.max_steps);
-    let mut cb = |n: usize, s: &crate::poisson2d::PicardStep| {
-        if let Some(pb) = &pb {
-            pb.set_position(n as u64);
-            pb.set_message(format!(
-                "update {:.2e} residual {:.2e}",
-                s.update, s.residual
-            ));
-        }
-    };
-    let r = grid_volume(
-        &faces,
-        start,
-        control,
-        solver.as_mut(),
-        params,
-        place,
-        &mut cb,
-    )?;
-    if let Some(pb) = pb {
-        pb.finish_and_clear();
-    }
-    let how = if valid {
-        "existing interior"
-    } else {
-        "transfinite"
-    };
-    Ok((r.grid, r.picard, how.into()))
+/// The wall face of a volume spec, if any.
+pub(super) fn wall_face(v: &VolumeSpec, place: &str) -> Result<Option<usize>> {
+    v.wall
+        .as_deref()
+        .map(|s| {
+            parse_face(s)
+                .ok_or_else(|| Error::input(place, format!("wall = '{s}': expected F1, …, F6")))
+        })
+        .transpose()
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::faces::edge_nodes;
     use super::*;
 
     #[test]
@@ -542,20 +361,5 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("needs 2 × 3"));
-    }
-
-    #[test]
-    fn coons_faces_of_box_edges_meet() {
-        let dims = [4, 3, 5];
-        let edges: [Vec<[f64; 3]>; 12] = std::array::from_fn(|e| {
-            edge_nodes(e, dims)
-                .into_iter()
-                .map(|n| [n[0] as f64, (n[1] as f64).powi(2), n[2] as f64 * 0.5])
-                .collect()
-        });
-        let faces: [Grid2<3>; 6] = std::array::from_fn(|f| coons_face(f, &edges, dims));
-        let f = Faces::new(faces, "b").unwrap();
-        assert_eq!(f.dims(), dims);
-        assert_eq!(f.face(3).point(2, 4), [2.0, 4.0, 2.0]);
     }
 }

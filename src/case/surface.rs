@@ -1,0 +1,138 @@
+//! Surface blocks of a case file (`kind = "surface"`, Section 4): the surface, and the (u, v)
+//! of the boundary nodes distributed by 3D arclength along the surface's own edges.
+
+use super::{point, LoadedCase};
+use crate::grid::Edge;
+use crate::io::{plot3d, Block};
+use crate::surfgrid::{edge_length, edge_params};
+use crate::{Error, Result};
+use ellipgrid_geometry::{self as geo, Surface, Vec3};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+/// The surface of a `kind = "surface"` block. Its parameter square's sides are the block's
+/// edges: E1 ↔ u = 0, E2 ↔ u = 1, E3 ↔ v = 0, E4 ↔ v = 1.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SurfaceSpec {
+    /// A bicubic Hermite surface through a control net read from a Plot3D file (a surface
+    /// block, ni × nj × 1; `block` is 1-based, default 1). Control points sit at uniform
+    /// parameter values.
+    HermiteNet {
+        file: PathBuf,
+        #[serde(default)]
+        block: Option<usize>,
+    },
+    /// The plane x = origin + u du + v dv.
+    Plane {
+        origin: Vec<f64>,
+        du: Vec<f64>,
+        dv: Vec<f64>,
+    },
+    /// The paper's z = (1/8) tanh(15 (1/4 − (x−1)² − (y−1)²)) over (x, y) ∈ [0, 2]².
+    TanhBump,
+    /// Scherk's minimal surface z = ln(cos y / cos x) over [−a, a]².
+    Scherk { half_width: f64 },
+}
+
+impl LoadedCase {
+    /// The surface of block k, boxed.
+    pub fn surface(&self, k: usize) -> Result<Box<dyn Surface>> {
+        let b = &self.case.blocks[k];
+        let place = self.block_place(k);
+        let Some(spec) = &b.surface else {
+            return Err(Error::input(
+                place,
+                "a surface block needs surface = { type = ... }",
+            ));
+        };
+        let geo_err = |source| Error::Geometry {
+            place: place.clone(),
+            source,
+        };
+        Ok(match spec {
+            SurfaceSpec::HermiteNet { file, block } => {
+                let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
+                Box::new(read_net(&path, block.unwrap_or(1))?)
+            }
+            SurfaceSpec::Plane { origin, du, dv } => Box::new(geo::Plane {
+                origin: point(origin, &place, "origin")?,
+                du: point(du, &place, "du")?,
+                dv: point(dv, &place, "dv")?,
+            }),
+            SurfaceSpec::TanhBump => Box::new(geo::TanhBump::default()),
+            SurfaceSpec::Scherk { half_width } => {
+                Box::new(geo::Scherk::new(*half_width).map_err(geo_err)?)
+            }
+        })
+    }
+
+    /// The surface of block k and the (u, v) of its boundary nodes (E1..E4, index order),
+    /// placed by each edge's distribution along the surface's edge curve.
+    #[allow(clippy::type_complexity)]
+    pub fn surface_block(&self, k: usize) -> Result<(Box<dyn Surface>, [Vec<[f64; 2]>; 4])> {
+        let b = &self.case.blocks[k];
+        let place = self.block_place(k);
+        if b.ni < 3 || b.nj < 3 {
+            return Err(Error::input(
+                &place,
+                format!(
+                    "ni = {}, nj = {}: a block needs at least 3 nodes each way",
+                    b.ni, b.nj
+                ),
+            ));
+        }
+        let surface = self.surface(k)?;
+        let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
+        for (e, spec) in Edge::ALL.into_iter().zip([&b.e1, &b.e2, &b.e3, &b.e4]) {
+            let at = format!("{place}, edge {e}");
+            if spec.curve.is_some() || spec.reverse {
+                return Err(Error::input(
+                    at,
+                    "the edges of a surface block are the surface's own edges: give only \
+                     a distribution",
+                ));
+            }
+            let n = if e.runs_along_i() { b.ni } else { b.nj };
+            let len = edge_length(surface.as_ref(), e);
+            let sigma = spec.distribution.sample(n, len, &at)?;
+            uv[e.index()] = edge_params(surface.as_ref(), e, &sigma);
+        }
+        Ok((surface, uv))
+    }
+}
+
+/// A Hermite control net from block `block` (1-based) of a Plot3D file.
+pub fn read_net(path: &Path, block: usize) -> Result<geo::HermiteSurface> {
+    let file = plot3d::read_plot3d(path)?;
+    let place = format!("{}: block {block}", path.display());
+    let b = file.blocks.get(block.wrapping_sub(1)).ok_or_else(|| {
+        Error::input(
+            &place,
+            format!("the file has {} block(s)", file.blocks.len()),
+        )
+    })?;
+    let (ni, nj, pts): (usize, usize, Vec<Vec3>) = match b {
+        Block::Surface(g) => (
+            g.ni(),
+            g.nj(),
+            (0..g.len())
+                .map(|n| Vec3::new(g.coord(0)[n], g.coord(1)[n], g.coord(2)[n]))
+                .collect(),
+        ),
+        Block::Planar(g) => (
+            g.ni(),
+            g.nj(),
+            (0..g.len())
+                .map(|n| Vec3::new(g.coord(0)[n], g.coord(1)[n], 0.0))
+                .collect(),
+        ),
+        Block::Volume(_) => {
+            return Err(Error::input(
+                place,
+                "a control net must be a surface block (nk = 1)",
+            ))
+        }
+    };
+    geo::HermiteSurface::new(ni, nj, pts).map_err(|source| Error::Geometry { place, source })
+}

@@ -1,0 +1,163 @@
+//! The multigrid solver inside the Picard iteration of [24], and nested iteration
+//! (`ellipgrid::nested`): the grids equal those of the direct solver and of plain Picard to
+//! the Picard tolerance, and the finest grid needs few Picard steps.
+
+use ellipgrid::boundary::Boundary2;
+use ellipgrid::case::{LoadedCase, SolverSpec};
+use ellipgrid::domain::{grid_block, ControlKind};
+use ellipgrid::linsolve::{by_name, direct::DirectLu, LinearSolver, MultigridSafe};
+use ellipgrid::multigrid::MgParams;
+use ellipgrid::nested::{grid_block_nested, level_sizes};
+use ellipgrid::poisson2d::PicardParams;
+use ellipgrid::Grid2;
+use std::path::Path;
+
+const TOL: f64 = 1e-10;
+
+/// The first block of an example case at `n × m` nodes; `edit` changes the case text.
+fn boundary(file: &str, n: usize, m: usize, edit: impl Fn(String) -> String) -> Boundary2<2> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join(file);
+    let text = edit(std::fs::read_to_string(&path).unwrap());
+    let mut case = LoadedCase::parse(&text, &path).unwrap();
+    case.case.blocks[0].ni = n;
+    case.case.blocks[0].nj = m;
+    case.planar_boundary(0).unwrap()
+}
+
+fn curved(n: usize, m: usize) -> Boundary2<2> {
+    boundary("curved.toml", n, m, |s| s)
+}
+
+/// The boundary-layer block with wall spacing 1e-5 (cell aspect ratios in the thousands).
+fn boundary_layer(n: usize, m: usize) -> Boundary2<2> {
+    boundary("boundary_layer.toml", n, m, |s| {
+        s.replace("first = 1e-4", "first = 1e-5")
+    })
+}
+
+fn params(nested: bool) -> PicardParams {
+    PicardParams {
+        tolerance: TOL,
+        nested: Some(nested),
+        ..PicardParams::default()
+    }
+}
+
+/// Largest node distance between two grids relative to the diameter.
+fn max_diff(a: &Grid2<2>, b: &Grid2<2>) -> f64 {
+    let mut m = 0.0f64;
+    for c in 0..2 {
+        for (u, v) in a.coord(c).iter().zip(b.coord(c)) {
+            m = m.max((u - v).abs());
+        }
+    }
+    m / a.diameter()
+}
+
+fn grid(b: &Boundary2<2>, solver: &mut dyn LinearSolver, nested: bool) -> Grid2<2> {
+    let r = grid_block(
+        b,
+        None,
+        ControlKind::Algebraic,
+        solver,
+        &params(nested),
+        "test",
+    )
+    .unwrap();
+    assert!(r.picard.converged, "{:?}", r.picard.history);
+    assert!(
+        r.picard.final_residual < 1e-11,
+        "{}",
+        r.picard.final_residual
+    );
+    r.grid
+}
+
+/// The Picard iterations stop at an update below TOL and contract at ≤ 0.2 per step, so two
+/// converged grids agree to a few TOL; 10 TOL leaves room without hiding a wrong grid (the
+/// start grids are 1e-2 away).
+const SAME: f64 = 10.0 * TOL;
+
+#[test]
+fn multigrid_default_and_names() {
+    assert_eq!(SolverSpec::default().linear, "multigrid");
+    assert_eq!(by_name("multigrid").unwrap().name(), "multigrid");
+    assert!(by_name("gauss").is_err());
+    let p = PicardParams::default();
+    assert!(p.nested_for("multigrid") && !p.nested_for("direct-lu"));
+}
+
+#[test]
+fn multigrid_grids_equal_direct_grids_curved() {
+    let b = curved(65, 49);
+    let direct = grid(&b, &mut DirectLu::new(), false);
+    let plain = grid(&b, by_name("multigrid").unwrap().as_mut(), false);
+    let nested = grid(&b, by_name("multigrid").unwrap().as_mut(), true);
+    let d = (max_diff(&direct, &plain), max_diff(&direct, &nested));
+    assert!(d.0 < SAME && d.1 < SAME, "{d:?}");
+}
+
+#[test]
+fn multigrid_grids_equal_direct_grids_boundary_layer() {
+    let b = boundary_layer(97, 65);
+    let direct = grid(&b, &mut DirectLu::new(), false);
+    let plain = grid(&b, by_name("multigrid").unwrap().as_mut(), false);
+    let nested = grid(&b, by_name("multigrid").unwrap().as_mut(), true);
+    let d = (max_diff(&direct, &plain), max_diff(&direct, &nested));
+    assert!(d.0 < SAME && d.1 < SAME, "{d:?}");
+    // the wall spacing survives: first cell 1e-5 on the side edges, kept inside
+    let h = nested.point(48, 1)[1] - nested.point(48, 0)[1];
+    assert!(h > 0.0 && h < 1e-4, "{h}");
+}
+
+#[test]
+fn nested_iteration_matches_plain_picard_with_the_direct_solver() {
+    // the nesting does not depend on the linear solver
+    let b = curved(33, 25);
+    let plain = grid(&b, &mut DirectLu::new(), false);
+    let nested = grid(&b, &mut DirectLu::new(), true);
+    assert!(max_diff(&plain, &nested) < SAME);
+}
+
+#[test]
+fn nested_iteration_needs_few_fine_picard_steps() {
+    // 257² curved: 6 levels (257, 129, …, 9); measured 4 fine steps (6 at 129², 3 at 1025²,
+    // examples/bench_grid.rs), against 13 steps of plain Picard. The coarse-to-fine
+    // difference, hence the fine start error, shrinks with the grid size.
+    let b = curved(257, 257);
+    assert_eq!(level_sizes(257, 257).len(), 6);
+    let mut mg = MultigridSafe::new(MgParams::default());
+    let (r, info) =
+        grid_block_nested(&b, ControlKind::Algebraic, &mut mg, &params(true), "t").unwrap();
+    assert!(r.picard.converged);
+    assert_eq!(info.levels.len(), 6);
+    assert!(info.levels.iter().all(|l| l.converged));
+    assert!(r.picard.steps <= 4, "{} fine steps", r.picard.steps);
+    // each fine step costs one or two cycles per coordinate (the forcing term)
+    for s in &r.picard.history {
+        assert!(s.linear_iterations.iter().all(|&k| (1..=2).contains(&k)));
+    }
+    // the same without nesting takes far more fine steps
+    let mut mg = MultigridSafe::new(MgParams::default());
+    let (p, pinfo) =
+        grid_block_nested(&b, ControlKind::Algebraic, &mut mg, &params(false), "t").unwrap();
+    assert!(p.picard.steps >= r.picard.steps + 5, "{}", p.picard.steps);
+    assert!(max_diff(&p.grid, &r.grid) < SAME);
+    // work units: total time over one residual evaluation, positive and finite
+    assert!(info.work_units.is_finite() && info.work_units > 1.0);
+    assert!(pinfo.work_units.is_finite() && pinfo.work_unit_seconds > 0.0);
+}
+
+#[test]
+fn even_sizes_are_not_coarsened() {
+    assert_eq!(level_sizes(64, 49), vec![(64, 49)]);
+    let b = curved(20, 15);
+    let mut mg = MultigridSafe::new(MgParams::default());
+    let (r, info) =
+        grid_block_nested(&b, ControlKind::Algebraic, &mut mg, &params(true), "t").unwrap();
+    assert_eq!(info.levels.len(), 1);
+    let direct = grid(&b, &mut DirectLu::new(), false);
+    assert!(max_diff(&r.grid, &direct) < SAME);
+}
