@@ -26,6 +26,20 @@ pub struct SmoothOptions {
     pub picard: PicardParams,
     /// Edges made orthogonal (Section 2.4) in every regridded block: flags E1, E2, E3, E4.
     pub orthogonal: [bool; 4],
+    /// How curved surface blocks are regridded.
+    pub method: SurfaceMethod,
+}
+
+/// How `smooth` regrids a curved surface block.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SurfaceMethod {
+    /// The minimal-surface system of Section 3: the boundary alone defines the new surface.
+    #[default]
+    Poisson,
+    /// Section 4 on the block's own surface: a bicubic Hermite surface through the existing
+    /// nodes (C¹, through every node) is regridded by Laplace–Beltrami and inversion, so the
+    /// new nodes stay on the existing surface.
+    Surface,
 }
 
 impl Default for SmoothOptions {
@@ -36,6 +50,7 @@ impl Default for SmoothOptions {
             control: ControlKind::Algebraic,
             picard: PicardParams::default(),
             orthogonal: [false; 4],
+            method: SurfaceMethod::Poisson,
         }
     }
 }
@@ -49,7 +64,9 @@ pub struct SmoothReport {
     pub method: String,
     /// "existing interior" if the input interior was a valid start grid, else "transfinite".
     pub start: String,
-    pub picard: PicardInfo,
+    /// The Picard history (absent for `--method surface`, which has no Picard iteration).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub picard: Option<PicardInfo>,
     pub quality: crate::volume::quality3d::AnyQuality,
 }
 
@@ -86,7 +103,7 @@ pub fn smooth_blocks(
                 let q = quality2d(&g2);
                 (
                     Block::Planar(g2),
-                    (String::from("planar"), start, picard, q.into()),
+                    (String::from("planar"), start, Some(picard), q.into()),
                 )
             }
             Block::Surface(g) if is_flat(g) => {
@@ -101,7 +118,20 @@ pub fn smooth_blocks(
                 let s = Grid2::<3>::from_coords(g.ni(), g.nj(), [x, y, g.coord(2).to_vec()]);
                 (
                     Block::Surface(s),
-                    ("planar (z = const)".into(), start, picard, q.into()),
+                    ("planar (z = const)".into(), start, Some(picard), q.into()),
+                )
+            }
+            Block::Surface(g) if opts.method == SurfaceMethod::Surface => {
+                let g2 = regrid_on_surface(g, opts, &place)?;
+                let q = quality_surface(&g2);
+                (
+                    Block::Surface(g2),
+                    (
+                        "surface (Section 4 on the block's Hermite surface)".into(),
+                        "none (no Picard iteration)".into(),
+                        None,
+                        q.into(),
+                    ),
                 )
             }
             Block::Surface(g) => {
@@ -109,7 +139,7 @@ pub fn smooth_blocks(
                 let q = quality_surface(&g2);
                 (
                     Block::Surface(g2),
-                    ("minimal surface".into(), start, picard, q.into()),
+                    ("minimal surface".into(), start, Some(picard), q.into()),
                 )
             }
             Block::Volume(g) => {
@@ -123,7 +153,7 @@ pub fn smooth_blocks(
                 let q = crate::volume::quality3d(&g2);
                 let method = format!("volume (Section 5, {})", picard.linear_solver);
                 let q = crate::volume::quality3d::AnyQuality::Volume(q);
-                (Block::Volume(g2), (method, start, picard, q))
+                (Block::Volume(g2), (method, start, Some(picard), q))
             }
         };
         out.push(nb);
@@ -136,6 +166,42 @@ pub fn smooth_blocks(
         });
     }
     Ok((out, reports))
+}
+
+/// Regrids a surface block on its own surface: the existing nodes are the control net of a
+/// bicubic Hermite surface, the boundary nodes keep their parameters (i/(ni−1), j/(nj−1)),
+/// and Section 4 places the interior (with orthogonality at the chosen edges).
+fn regrid_on_surface(g: &Grid2<3>, opts: &SmoothOptions, place: &str) -> Result<Grid2<3>> {
+    if !g.all_finite() {
+        return Err(Error::input(place, "the block has non-finite coordinates"));
+    }
+    let (ni, nj) = (g.ni(), g.nj());
+    let pts = (0..g.len())
+        .map(|n| ellipgrid_geometry::Vec3::new(g.coord(0)[n], g.coord(1)[n], g.coord(2)[n]))
+        .collect();
+    let net =
+        ellipgrid_geometry::HermiteSurface::new(ni, nj, pts).map_err(|source| Error::Geometry {
+            place: place.to_string(),
+            source,
+        })?;
+    let along = |n: usize| (0..n).map(move |k| k as f64 / (n - 1) as f64);
+    let uv = [
+        along(nj).map(|v| [0.0, v]).collect(),
+        along(nj).map(|v| [1.0, v]).collect(),
+        along(ni).map(|u| [u, 0.0]).collect(),
+        along(ni).map(|u| [u, 1.0]).collect(),
+    ];
+    let mut solver = linsolve::by_name(&opts.linear).map_err(|m| Error::input(place, m))?;
+    let r = crate::surfgrid::grid_surface_orthogonal(
+        &net,
+        &uv,
+        opts.orthogonal,
+        solver.as_mut(),
+        place,
+    )?;
+    let mut grid = r.grid;
+    copy_boundary(g, &mut grid);
+    Ok(grid)
 }
 
 /// True if every z is the same value.

@@ -13,7 +13,13 @@ fn tmp() -> tempfile::TempDir {
 
 #[test]
 fn examples_run_fold_free_and_converge() {
-    for ex in ["curved", "boundary_layer", "folding_start", "wing_pylon", "scherk"] {
+    for ex in [
+        "curved",
+        "boundary_layer",
+        "folding_start",
+        "wing_pylon",
+        "scherk",
+    ] {
         let d = tmp();
         let case = root().join(format!("examples/{ex}.toml"));
         let o = ellipgrid(

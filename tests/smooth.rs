@@ -217,3 +217,55 @@ fn smooth_errors_exit_2_and_folds_exit_3_without_output() {
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     assert!(d.path().join("out.x").exists());
 }
+
+#[test]
+fn smooth_method_surface_keeps_nodes_on_the_surface() {
+    use ellipgrid_geometry::{Surface, TanhBump};
+    let d = tempfile::tempdir().unwrap();
+    let bump = TanhBump::default();
+    let n = 65;
+    // An existing grid on the bump with a distorted interior distribution.
+    let g = Grid2::<3>::from_fn(n, n, |i, j| {
+        let (u, v) = (i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64);
+        let (uu, vv) = (
+            u + 0.1 * (std::f64::consts::PI * u).sin() * v * (1.0 - v),
+            v,
+        );
+        let p = bump.point(uu, vv);
+        [p.x, p.y, p.z]
+    });
+    write_plot3d(
+        &d.path().join("in.x"),
+        &[Block::Surface(g.clone())],
+        &Plot3dFormat::default(),
+        None,
+    )
+    .unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &["smooth", "in.x", "-o", "out.x", "--method", "surface", "-q"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let out = read_plot3d(&d.path().join("out.x")).unwrap();
+    let Block::Surface(s) = &out.blocks[0] else {
+        panic!()
+    };
+    let mut off = 0.0f64;
+    let mut moved = 0.0f64;
+    for p in 0..s.len() {
+        let (i, j) = (p % n, p / n);
+        let x = [s.coord(0)[p], s.coord(1)[p], s.coord(2)[p]];
+        if s.is_boundary(i, j) {
+            assert_eq!(bits(&x), bits(&g.point(i, j)), "boundary node ({i}, {j})");
+        }
+        // distance from the bump z(x, y)
+        let z = bump.point(x[0] / 2.0, x[1] / 2.0).z;
+        off = off.max((x[2] - z).abs());
+        moved = moved.max((x[0] - g.coord(0)[p]).abs());
+    }
+    assert!(moved > 1e-2, "the interior was not regridded ({moved})");
+    assert!(off < 2e-3, "nodes left the surface by {off}");
+    // --method poisson regrids it as a minimal surface instead: off the bump
+    let o = ellipgrid(d.path(), &["smooth", "in.x", "-o", "min.x", "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+}

@@ -13,7 +13,7 @@ use ellipgrid::io::Block;
 use ellipgrid::job;
 use ellipgrid::poisson2d::PicardParams;
 use ellipgrid::quality;
-use ellipgrid::smooth::{smooth_blocks, SmoothOptions};
+use ellipgrid::smooth::{smooth_blocks, SmoothOptions, SurfaceMethod};
 use ellipgrid::volume::quality3d::AnyQuality;
 use ellipgrid::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -73,6 +73,11 @@ enum Command {
         /// Make the grid orthogonal at these edges (Section 2.4), e.g. `--orthogonal E1,E3`.
         #[arg(long, value_delimiter = ',', value_name = "E,..")]
         orthogonal: Vec<String>,
+        /// Curved surface blocks: "poisson" regrids them as minimal surfaces spanned by their
+        /// boundary (Section 3); "surface" keeps them on their own surface (a bicubic Hermite
+        /// surface through the existing nodes) and regrids by Section 4.
+        #[arg(long, default_value = "poisson", value_parser = ["poisson", "surface"])]
+        method: String,
         /// Write the report (per block: method, start grid, Picard history, quality) as JSON.
         #[arg(long, value_name = "FILE.json")]
         report: Option<PathBuf>,
@@ -129,6 +134,7 @@ pub fn main() -> ExitCode {
             linear,
             tolerance,
             orthogonal,
+            method,
             report,
             allow_folded,
             quiet,
@@ -142,6 +148,11 @@ pub fn main() -> ExitCode {
                     ..PicardParams::default()
                 },
                 orthogonal,
+                method: if method == "surface" {
+                    SurfaceMethod::Surface
+                } else {
+                    SurfaceMethod::Poisson
+                },
                 ..SmoothOptions::default()
             };
             smooth(

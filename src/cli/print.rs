@@ -10,7 +10,9 @@ pub fn smoothed(r: &SmoothReport) {
         "block {}: {} system, start from the {}",
         r.block, r.method, r.start
     );
-    history(&r.picard);
+    if let Some(p) = &r.picard {
+        history(p);
+    }
     println!("{}", r.quality);
 }
 
