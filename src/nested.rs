@@ -19,8 +19,14 @@
 //! cubic interpolation in index space. With two coarse levels the displacement on level ℓ + 1
 //! is first extrapolated in the manner of Richardson, d ← d_2h + (d_2h − P d_4h) / 4, which
 //! removes the O(h²) term of the difference between the levels when the solution is smooth in
-//! index space. A level whose Picard iteration fails or does not converge is skipped: the
-//! next level starts from the transfinite grid (as without nesting).
+//! index space. A coarse level stops at [`COARSE_STOP`] times its first update (or at the
+//! Picard tolerance); the finest at the Picard tolerance. A level whose Picard iteration fails
+//! or does not converge is skipped: the next level starts from the transfinite grid (as
+//! without nesting).
+//!
+//! Measured (`examples/bench_grid.rs`, curved domain): 4 Picard steps on the finest grid at
+//! 257², 3 at 1025², against 12–13 for plain Picard; the grids agree with plain Picard's to
+//! 1e-11 of the diameter.
 //!
 //! # Work units
 //! A work unit (WU) is the time of one evaluation of the residual of [24] with its assembly

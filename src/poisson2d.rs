@@ -4,7 +4,12 @@
 //! Each Picard step freezes P = g22, Q = −g12, R = g11 and S, T (from the control functions)
 //! at the current iterate, assembles the nine-point operator of
 //! `P x_ξξ + 2Q x_ξη + R x_ηη + S x_ξ + T x_η = 0` with central differences (index space), and
-//! solves it once per coordinate with the same operator.
+//! solves it once per coordinate with the same operator (one setup, coordinates in parallel).
+//!
+//! The linear systems are solved in correction form, A δ = b − A x_k from δ = 0, i.e. from the
+//! current iterate, and with an iterative solver only as accurately as the step needs
+//! ([`PicardParams::linear_forcing`]): one or two multigrid cycles per step. The stopping test
+//! (largest update below the tolerance) is the same for every solver.
 
 use crate::boundary::Boundary2;
 use crate::control::Control2;

@@ -313,3 +313,80 @@ fn wing_pylon_grid_is_fold_free_and_follows_the_boundary_not_the_net() {
         "final grids differ by {dg}"
     );
 }
+
+#[test]
+fn tanh_surface_orthogonal_at_chosen_edges_in_the_tangent_plane() {
+    use ellipgrid::quality::quality_surface;
+    use ellipgrid::surfgrid::grid_surface_orthogonal;
+    let bump = TanhBump::default();
+    let n = 65;
+    // unequal opposite distributions, so that the plain grid leaves the edges at an angle
+    let clustered = ellipgrid_geometry::vinokur(n, Some(0.004), None).unwrap();
+    let sigma = |e: Edge| match e {
+        Edge::E2 | Edge::E4 => clustered.clone(),
+        _ => uniform(n),
+    };
+    let uv = Edge::ALL.map(|e| edge_params(&bump, e, &sigma(e)));
+    // deviation from 90° of the first grid line, measured in 3D (the tangent plane to first
+    // order), over the middle half of an edge
+    let dev = |g: &Grid2<3>, e: Edge| {
+        let (ni, nj) = (g.ni(), g.nj());
+        let m = if e.runs_along_i() { ni } else { nj };
+        (m / 4..3 * m / 4)
+            .map(|k| {
+                let (wall, prev, next, inner) = match e {
+                    Edge::E1 => (
+                        g.point(0, k),
+                        g.point(0, k - 1),
+                        g.point(0, k + 1),
+                        g.point(1, k),
+                    ),
+                    Edge::E2 => (
+                        g.point(ni - 1, k),
+                        g.point(ni - 1, k - 1),
+                        g.point(ni - 1, k + 1),
+                        g.point(ni - 2, k),
+                    ),
+                    Edge::E3 => (
+                        g.point(k, 0),
+                        g.point(k - 1, 0),
+                        g.point(k + 1, 0),
+                        g.point(k, 1),
+                    ),
+                    Edge::E4 => (
+                        g.point(k, nj - 1),
+                        g.point(k - 1, nj - 1),
+                        g.point(k + 1, nj - 1),
+                        g.point(k, nj - 2),
+                    ),
+                };
+                let t: Vec<f64> = (0..3).map(|c| next[c] - prev[c]).collect();
+                let l: Vec<f64> = (0..3).map(|c| inner[c] - wall[c]).collect();
+                let dot: f64 = t.iter().zip(&l).map(|(a, b)| a * b).sum();
+                let nt = t.iter().map(|a| a * a).sum::<f64>().sqrt();
+                let nl = l.iter().map(|a| a * a).sum::<f64>().sqrt();
+                (90.0 - (dot / (nt * nl)).acos().to_degrees()).abs()
+            })
+            .fold(0.0, f64::max)
+    };
+    let plain = grid_surface_orthogonal(&bump, &uv, [false; 4], &mut DirectLu::new(), "t").unwrap();
+    let orth = grid_surface_orthogonal(
+        &bump,
+        &uv,
+        [true, false, true, false],
+        &mut DirectLu::new(),
+        "t",
+    )
+    .unwrap();
+    assert_eq!(quality_surface(&orth.grid).folded_cells, 0);
+    let report: Vec<(Edge, f64, f64)> = Edge::ALL
+        .iter()
+        .map(|&e| (e, dev(&plain.grid, e), dev(&orth.grid, e)))
+        .collect();
+    eprintln!("(edge, plain, orthogonal at E1 and E3) max deviation over the middle half, degrees: {report:?}");
+    for (e, p, o) in &report {
+        if matches!(e, Edge::E1 | Edge::E3) {
+            assert!(*o < 0.5 * p && *o < 2.0, "{e}: {o}° against {p}° plain");
+        }
+    }
+}
