@@ -163,6 +163,9 @@ pub fn grid_block_nested<const D: usize>(
                 seconds,
             });
             let total = t0.elapsed().as_secs_f64();
+            let mut picard = picard;
+            picard.work_units = Some(total / wu);
+            picard.coarse_steps = levels[..levels.len() - 1].iter().map(|l| l.steps).collect();
             let info = NestedInfo {
                 levels,
                 seconds: total,

@@ -91,6 +91,14 @@ pub struct PicardInfo {
     pub tolerance: f64,
     /// Residual of [24] at the final grid.
     pub final_residual: f64,
+    /// Cost of the whole grid generation (nested levels included) in work units: one WU is
+    /// the time of one evaluation of the residual of [24] on the finest grid, measured in the
+    /// same run. Absent where it was not measured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub work_units: Option<f64>,
+    /// Picard steps on each coarser level of a nested-iteration solve, coarsest first.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub coarse_steps: Vec<usize>,
     /// Per-step history.
     pub history: Vec<PicardStep>,
 }
@@ -377,6 +385,8 @@ pub(crate) fn solve_timed<const D: usize>(
         converged,
         tolerance: params.tolerance,
         final_residual,
+        work_units: None,
+        coarse_steps: Vec::new(),
         history,
     };
     Ok((info, eval_secs))

@@ -390,3 +390,65 @@ fn tanh_surface_orthogonal_at_chosen_edges_in_the_tangent_plane() {
         }
     }
 }
+
+#[test]
+fn surface_case_with_an_inline_net_and_projected_edge_nodes() {
+    use std::process::Command;
+    let d = tempfile::tempdir().unwrap();
+    // A 3 × 3 net of the saddle z = x y over [0, 1]² (bilinear nets are reproduced exactly).
+    let pts: Vec<String> = (0..9)
+        .map(|k| {
+            let (x, y) = ((k % 3) as f64 / 2.0, (k / 3) as f64 / 2.0);
+            format!("[{x}, {y}, {}]", x * y)
+        })
+        .collect();
+    // E3 given as nodes on the surface's edge v = 0 (z = 0), projected onto it.
+    let e3: Vec<String> = (0..9)
+        .map(|k| format!("[{}, 0.0, 0.0]", (k as f64 / 8.0).powi(2)))
+        .collect();
+    let case = format!(
+        "[[block]]\nkind = \"surface\"\nni = 9\nnj = 7\n\
+         surface = {{ type = \"hermite_net\", ni = 3, nj = 3, points = [{}] }}\n\
+         [block.E1]\n[block.E2]\n[block.E3]\ncurve = {{ type = \"nodes\", points = [{}] }}\n[block.E4]\n",
+        pts.join(", "),
+        e3.join(", ")
+    );
+    std::fs::write(d.path().join("s.toml"), &case).unwrap();
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_ellipgrid"))
+            .args(args)
+            .current_dir(d.path())
+            .output()
+            .unwrap()
+    };
+    let o = run(&["run", "s.toml", "-o", "s.x", "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let f = ellipgrid::io::plot3d::read_plot3d(&d.path().join("s.x")).unwrap();
+    let ellipgrid::io::Block::Surface(g) = &f.blocks[0] else {
+        panic!()
+    };
+    for i in 0..9 {
+        let p = g.point(i, 0);
+        assert!(
+            (p[0] - (i as f64 / 8.0).powi(2)).abs() < 1e-12,
+            "E3 node {i}: {p:?}"
+        );
+    }
+    for k in 0..g.len() {
+        let (x, y, z) = (g.coord(0)[k], g.coord(1)[k], g.coord(2)[k]);
+        assert!((z - x * y).abs() < 1e-12, "node off the saddle");
+    }
+    // A node off the edge is refused, naming the edge.
+    std::fs::write(
+        d.path().join("bad.toml"),
+        case.replace("[0.015625, 0.0, 0.0]", "[0.015625, 0.2, 0.0]"),
+    )
+    .unwrap();
+    let o = run(&["run", "bad.toml", "-o", "b.x"]);
+    assert_eq!(o.status.code(), Some(2));
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        msg.contains("edge E3") && msg.contains("away from the surface"),
+        "{msg}"
+    );
+}

@@ -15,13 +15,16 @@ use std::path::{Path, PathBuf};
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum SurfaceSpec {
-    /// A bicubic Hermite surface through a control net read from a Plot3D file (a surface
-    /// block, ni × nj × 1; `block` is 1-based, default 1). Control points sit at uniform
-    /// parameter values.
+    /// A bicubic Hermite surface through a control net: read from a Plot3D file (a surface
+    /// block, ni × nj × 1; `block` is 1-based, default 1), or given inline as `ni`, `nj` and
+    /// `points` (i fastest). Control points sit at uniform parameter values.
     HermiteNet {
-        file: PathBuf,
+        file: Option<PathBuf>,
         #[serde(default)]
         block: Option<usize>,
+        ni: Option<usize>,
+        nj: Option<usize>,
+        points: Option<Vec<Vec<f64>>>,
     },
     /// The plane x = origin + u du + v dv.
     Plane {
@@ -51,9 +54,45 @@ impl LoadedCase {
             source,
         };
         Ok(match spec {
-            SurfaceSpec::HermiteNet { file, block } => {
+            SurfaceSpec::HermiteNet {
+                file: Some(file),
+                block,
+                ni: None,
+                nj: None,
+                points: None,
+            } => {
                 let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
                 Box::new(read_net(&path, block.unwrap_or(1))?)
+            }
+            SurfaceSpec::HermiteNet {
+                file: None,
+                block: None,
+                ni: Some(ni),
+                nj: Some(nj),
+                points: Some(points),
+            } => {
+                if points.len() != ni * nj {
+                    return Err(Error::input(
+                        place,
+                        format!(
+                            "hermite_net: {} points given, ni × nj = {}",
+                            points.len(),
+                            ni * nj
+                        ),
+                    ));
+                }
+                let pts = points
+                    .iter()
+                    .enumerate()
+                    .map(|(k, q)| point(q, &place, &format!("points[{k}]")))
+                    .collect::<Result<Vec<_>>>()?;
+                Box::new(geo::HermiteSurface::new(*ni, *nj, pts).map_err(geo_err)?)
+            }
+            SurfaceSpec::HermiteNet { .. } => {
+                return Err(Error::input(
+                    place,
+                    "hermite_net takes either file (and block) or ni, nj and points",
+                ))
             }
             SurfaceSpec::Plane { origin, du, dv } => Box::new(geo::Plane {
                 origin: point(origin, &place, "origin")?,
@@ -86,20 +125,84 @@ impl LoadedCase {
         let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
         for (e, spec) in Edge::ALL.into_iter().zip([&b.e1, &b.e2, &b.e3, &b.e4]) {
             let at = format!("{place}, edge {e}");
-            if spec.curve.is_some() || spec.reverse {
-                return Err(Error::input(
-                    at,
-                    "the edges of a surface block are the surface's own edges: give only \
-                     a distribution",
-                ));
-            }
             let n = if e.runs_along_i() { b.ni } else { b.nj };
-            let len = edge_length(surface.as_ref(), e);
-            let sigma = spec.distribution.sample(n, len, &at)?;
-            uv[e.index()] = edge_params(surface.as_ref(), e, &sigma);
+            uv[e.index()] = match (&spec.curve, spec.reverse) {
+                (None, false) => {
+                    let len = edge_length(surface.as_ref(), e);
+                    let sigma = spec.distribution.sample(n, len, &at)?;
+                    edge_params(surface.as_ref(), e, &sigma)
+                }
+                (Some(super::CurveSpec::Nodes { points }), false)
+                    if matches!(spec.distribution, super::DistributionSpec::Uniform) =>
+                {
+                    project_nodes(surface.as_ref(), e, points, n, &at)?
+                }
+                _ => {
+                    return Err(Error::input(
+                        at,
+                        "the edges of a surface block are the surface's own edges: give a \
+                         distribution, or the edge's nodes as curve = { type = \"nodes\", \
+                         points = [...] } (projected onto the surface's edge)",
+                    ))
+                }
+            };
         }
         Ok((surface, uv))
     }
+}
+
+/// The (u, v) of given edge nodes, each projected onto the surface's edge curve by Newton
+/// (Section 4.2 step 1); the nodes must lie on that curve (within 1e-6 of its length) and
+/// run along it in order, the ends at the corners.
+fn project_nodes(
+    surface: &dyn Surface,
+    e: Edge,
+    points: &[Vec<f64>],
+    n: usize,
+    at: &str,
+) -> Result<Vec<[f64; 2]>> {
+    if points.len() != n {
+        return Err(Error::input(
+            at,
+            format!(
+                "{} nodes given but the block needs {n} on this edge",
+                points.len()
+            ),
+        ));
+    }
+    let side = crate::surfgrid::surface_edge(e);
+    let len = edge_length(surface, e);
+    let mut out = Vec::with_capacity(n);
+    let mut prev = 0.0f64;
+    for (k, q) in points.iter().enumerate() {
+        let p = point(q, at, &format!("points[{k}]"))?;
+        let t = if k == 0 {
+            0.0
+        } else if k + 1 == n {
+            1.0
+        } else {
+            geo::project_to_edge(surface, side, p, prev).ok_or_else(|| {
+                Error::input(at, format!("node {k} could not be projected onto the edge"))
+            })?
+        };
+        let (u, v) = side.uv(t);
+        let d = (surface.point(u, v) - p).norm();
+        if d > 1e-6 * len {
+            return Err(Error::input(
+                at,
+                format!("node {k} is {d:.3e} away from the surface's edge"),
+            ));
+        }
+        if k > 0 && t <= prev {
+            return Err(Error::input(
+                at,
+                format!("node {k} does not advance along the edge"),
+            ));
+        }
+        prev = t;
+        out.push([u, v]);
+    }
+    Ok(out)
 }
 
 /// A Hermite control net from block `block` (1-based) of a Plot3D file.

@@ -82,6 +82,12 @@ pub fn history(p: &PicardInfo) {
         );
     }
     println!("  final residual[24] {:.3e}", p.final_residual);
+    if let Some(wu) = p.work_units {
+        println!(
+            "  nested iteration: coarse-level Picard steps {:?}; whole grid {:.1} work units",
+            p.coarse_steps, wu
+        );
+    }
 }
 
 /// Warns about blocks whose Picard iteration did not converge.

@@ -267,6 +267,8 @@ pub fn solve(
         converged,
         tolerance: params.tolerance,
         final_residual,
+        work_units: None,
+        coarse_steps: Vec::new(),
         history,
     })
 }
