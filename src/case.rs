@@ -104,6 +104,9 @@ pub struct BlockSpec {
     pub e4: EdgeSpec,
     /// The surface of a `kind = "surface"` block (its edges are the surface's own edges).
     pub surface: Option<SurfaceSpec>,
+    /// A reference surface: the report gives the distance of the grid's nodes from it (for
+    /// example Scherk's surface for a minimal-surface block spanned by edges on it).
+    pub reference: Option<SurfaceSpec>,
 }
 
 /// The kind of a block.

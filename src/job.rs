@@ -4,6 +4,7 @@
 //! output file being written.
 
 use crate::case::{BlockKind, LoadedCase};
+use crate::grid::Grid2;
 use crate::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
 use crate::io::{gltf, obj, vtk, Block};
 use crate::linsolve;
@@ -13,6 +14,7 @@ use crate::quality::{self, QualityReport};
 use crate::surfgrid::{grid_surface_orthogonal, StepTimes};
 use crate::transform::transfinite;
 use crate::{Error, Result};
+use ellipgrid_geometry::{Surface, SurfaceLocator, Vec3};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -31,7 +33,43 @@ pub struct BlockReport {
     /// Seconds per step of the Section 4 pipeline (surface blocks; no Picard iteration).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub surface_steps: Option<StepTimes>,
+    /// Distance of the nodes from the block's `reference` surface, if it has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface_distance: Option<SurfaceDistance>,
     pub quality: QualityReport,
+}
+
+/// Distance of a grid's nodes from a reference surface (closest-point projection).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct SurfaceDistance {
+    pub max: f64,
+    pub rms: f64,
+}
+
+/// The distance of every node of `g` from `surface`: the closest sampled patch through the
+/// BVH, then Newton ([`ellipgrid_geometry::SurfaceLocator`]).
+pub fn surface_distance(
+    g: &Grid2<3>,
+    surface: &dyn Surface,
+    place: &str,
+) -> Result<SurfaceDistance> {
+    use rayon::prelude::*;
+    let loc = SurfaceLocator::new(surface, 64, 64).map_err(|source| Error::Geometry {
+        place: place.to_string(),
+        source,
+    })?;
+    let d: Vec<f64> = (0..g.len())
+        .into_par_iter()
+        .map(|n| {
+            let p = Vec3::new(g.coord(0)[n], g.coord(1)[n], g.coord(2)[n]);
+            let (u, v) = loc.closest(p);
+            (surface.point(u, v) - p).norm()
+        })
+        .collect();
+    Ok(SurfaceDistance {
+        max: d.iter().cloned().fold(0.0, f64::max),
+        rms: (d.iter().map(|v| v * v).sum::<f64>() / d.len().max(1) as f64).sqrt(),
+    })
 }
 
 /// Report of a whole run (what `--report` writes as JSON).
@@ -101,6 +139,7 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
         let (ctrl, params) = (spec.solver.control, &spec.solver.picard);
         let orth = case.block_orthogonal(k)?;
         let mut surface_steps = None;
+        let mut surface_distance = None;
         let (block, picard, quality) = match spec.blocks[k].kind {
             BlockKind::Planar => {
                 let b = case.planar_boundary(k)?;
@@ -112,6 +151,9 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
                 let b = case.minimal_boundary(k)?;
                 let r = grid_block_with(&b, None, orth, ctrl, solver.as_mut(), params, &place)?;
                 let q = quality::quality_surface(&r.grid);
+                if let Some(s) = case.reference_surface(k)? {
+                    surface_distance = Some(self::surface_distance(&r.grid, s.as_ref(), &place)?);
+                }
                 (Block::Surface(r.grid), Some(r.picard), q)
             }
             BlockKind::Surface => {
@@ -131,6 +173,7 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             seconds: t0.elapsed().as_secs_f64(),
             picard,
             surface_steps,
+            surface_distance,
             quality,
         };
         progress(&rep);
@@ -178,29 +221,17 @@ pub fn plot3d_format(case: &LoadedCase) -> Result<Plot3dFormat> {
         ..Plot3dFormat::default()
     };
     if let Some(e) = &o.encoding {
-        f.encoding = match e.as_str() {
-            "unformatted" => Encoding::Unformatted,
-            "formatted" => Encoding::Formatted,
-            "stream" => Encoding::Stream,
-            _ => {
-                return Err(Error::input(
-                    at,
-                    format!("encoding '{e}': expected unformatted, formatted or stream"),
-                ))
-            }
-        };
+        f.encoding = Encoding::parse(e).ok_or_else(|| {
+            Error::input(
+                &at,
+                format!("encoding '{e}': expected unformatted, formatted or stream"),
+            )
+        })?;
     }
     if let Some(p) = &o.precision {
-        f.precision = match p.as_str() {
-            "double" => Precision::Double,
-            "single" => Precision::Single,
-            _ => {
-                return Err(Error::input(
-                    at,
-                    format!("precision '{p}': expected double or single"),
-                ))
-            }
-        };
+        f.precision = Precision::parse(p).ok_or_else(|| {
+            Error::input(&at, format!("precision '{p}': expected double or single"))
+        })?;
     }
     f.byte_order = ByteOrder::Little;
     if let Some(m) = o.multi_block {

@@ -131,6 +131,11 @@ fn minimal_block_runs_from_a_case_file() {
         serde_json::from_str(&fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
     assert_eq!(r["blocks"][0]["picard"]["converged"], true);
     assert_eq!(r["blocks"][0]["quality"]["folded_cells"], 0);
+    let dist = r["blocks"][0]["surface_distance"]["max"].as_f64().unwrap();
+    assert!(
+        dist > 1e-6 && dist < 2e-3,
+        "reported distance from Scherk's surface {dist}"
+    );
     let f = ellipgrid::io::plot3d::read_plot3d(&d.path().join("s.x")).unwrap();
     let ellipgrid::io::Block::Surface(g) = &f.blocks[0] else {
         panic!("not a surface")

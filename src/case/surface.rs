@@ -41,14 +41,30 @@ pub enum SurfaceSpec {
 impl LoadedCase {
     /// The surface of block k, boxed.
     pub fn surface(&self, k: usize) -> Result<Box<dyn Surface>> {
-        let b = &self.case.blocks[k];
         let place = self.block_place(k);
-        let Some(spec) = &b.surface else {
+        let Some(spec) = &self.case.blocks[k].surface else {
             return Err(Error::input(
                 place,
                 "a surface block needs surface = { type = ... }",
             ));
         };
+        self.build_surface(spec, &place)
+    }
+
+    /// The `reference` surface of block k, if any: the report gives the distance of the
+    /// grid's nodes from it (e.g. Scherk's surface for a minimal-surface block).
+    pub fn reference_surface(&self, k: usize) -> Result<Option<Box<dyn Surface>>> {
+        let place = format!("{}, reference", self.block_place(k));
+        self.case.blocks[k]
+            .reference
+            .as_ref()
+            .map(|spec| self.build_surface(spec, &place))
+            .transpose()
+    }
+
+    /// A surface from its spec (`place` names it in errors).
+    fn build_surface(&self, spec: &SurfaceSpec, place: &str) -> Result<Box<dyn Surface>> {
+        let place = place.to_string();
         let geo_err = |source| Error::Geometry {
             place: place.clone(),
             source,

@@ -227,29 +227,17 @@ fn plot3d_format(a: &ConvertArgs, base: Option<Plot3dFormat>) -> Result<Plot3dFo
         ..Plot3dFormat::default()
     });
     if let Some(e) = &a.encoding {
-        f.encoding = match e.as_str() {
-            "unformatted" => Encoding::Unformatted,
-            "formatted" => Encoding::Formatted,
-            "stream" => Encoding::Stream,
-            _ => {
-                return Err(Error::input(
-                    "--encoding",
-                    format!("'{e}': expected unformatted, formatted or stream"),
-                ))
-            }
-        };
+        f.encoding = Encoding::parse(e).ok_or_else(|| {
+            Error::input(
+                "--encoding",
+                format!("'{e}': expected unformatted, formatted or stream"),
+            )
+        })?;
     }
     if let Some(p) = &a.precision {
-        f.precision = match p.as_str() {
-            "single" => Precision::Single,
-            "double" => Precision::Double,
-            _ => {
-                return Err(Error::input(
-                    "--precision",
-                    format!("'{p}': expected single or double"),
-                ))
-            }
-        };
+        f.precision = Precision::parse(p).ok_or_else(|| {
+            Error::input("--precision", format!("'{p}': expected single or double"))
+        })?;
     }
     let set = |on: bool, off: bool, v: &mut bool| {
         if on {

@@ -25,6 +25,12 @@ pub fn block(b: &BlockReport) {
     if let Some(p) = &b.picard {
         history(p);
     }
+    if let Some(d) = &b.surface_distance {
+        println!(
+            "  distance from the reference surface: max {:.3e}, rms {:.3e}",
+            d.max, d.rms
+        );
+    }
     if let Some(t) = &b.surface_steps {
         println!(
             "  Section 4 pipeline: initial grid {:.3} s, Laplace–Beltrami {:.3} s, target {:.3} s, \

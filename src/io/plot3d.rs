@@ -38,7 +38,28 @@ pub enum Precision {
     Double,
 }
 
+impl Encoding {
+    /// Parses "unformatted", "formatted" or "stream" (the names case files and the CLI use).
+    pub fn parse(name: &str) -> Option<Encoding> {
+        match name {
+            "unformatted" => Some(Encoding::Unformatted),
+            "formatted" => Some(Encoding::Formatted),
+            "stream" => Some(Encoding::Stream),
+            _ => None,
+        }
+    }
+}
+
 impl Precision {
+    /// Parses "single" or "double".
+    pub fn parse(name: &str) -> Option<Precision> {
+        match name {
+            "single" => Some(Precision::Single),
+            "double" => Some(Precision::Double),
+            _ => None,
+        }
+    }
+
     /// Bytes per coordinate value.
     pub fn bytes(self) -> usize {
         match self {
