@@ -199,18 +199,7 @@ pub fn hermite_blend(ef: &EdgeFunctions, orthogonal: [bool; 4], place: &str) -> 
             t[i + ni * j] = tv;
         }
     }
-    for j in 0..nj {
-        s[ni * j] = 0.0;
-        s[ni - 1 + ni * j] = 1.0;
-        t[ni * j] = ef.t_e1[j];
-        t[ni - 1 + ni * j] = ef.t_e2[j];
-    }
-    for i in 0..ni {
-        t[i] = 0.0;
-        t[i + ni * (nj - 1)] = 1.0;
-        s[i] = ef.s_e3[i];
-        s[i + ni * (nj - 1)] = ef.s_e4[i];
-    }
+    crate::transform::set_edge_values(ef, &mut s, &mut t);
     Ok(ParamGrid::from_parts(ni, nj, s, t))
 }
 

@@ -67,7 +67,15 @@ pub fn straight_line(ef: &EdgeFunctions) -> ParamGrid {
             t[i + ni * j] = c + d * sv;
         }
     }
-    // Boundary values exactly as given (no round-off on the edges).
+    set_edge_values(ef, &mut s, &mut t);
+    ParamGrid { ni, nj, s, t }
+}
+
+/// Writes the boundary values of an algebraic map exactly as the edge functions give them
+/// (s = 0 on E1, 1 on E2, s_E3, s_E4 along E3, E4; t likewise), so the edges carry no
+/// round-off of the interior formula.
+pub(crate) fn set_edge_values(ef: &EdgeFunctions, s: &mut [f64], t: &mut [f64]) {
+    let (ni, nj) = (ef.ni(), ef.nj());
     for j in 0..nj {
         s[ni * j] = 0.0;
         s[ni - 1 + ni * j] = 1.0;
@@ -80,7 +88,6 @@ pub fn straight_line(ef: &EdgeFunctions) -> ParamGrid {
         s[i] = ef.s_e3[i];
         s[i + ni * (nj - 1)] = ef.s_e4[i];
     }
-    ParamGrid { ni, nj, s, t }
 }
 
 /// Lagrange transfinite interpolation of the boundary, uniform in (ξ, η): the start grid of

@@ -8,11 +8,44 @@ use crate::stencil::Stencil9;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{linalg::solvers::Lu, SparseColMat, Triplet};
 
+/// A factored sparse matrix: faer's LU, shared by the 2D and 3D direct solvers.
+pub struct SparseLu {
+    lu: Lu<usize, f64>,
+    n: usize,
+}
+
+impl SparseLu {
+    /// Factors the n × n matrix given as triplets (row, column, value).
+    pub fn factor(n: usize, t: &[Triplet<usize, usize, f64>]) -> Result<Self, SolveError> {
+        let m = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, t)
+            .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
+        let lu = m
+            .sp_lu()
+            .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
+        Ok(SparseLu { lu, n })
+    }
+
+    /// x = A⁻¹ b.
+    pub fn solve(&self, b: &[f64], x: &mut [f64]) -> Result<SolveInfo, SolveError> {
+        assert_eq!(b.len(), self.n);
+        x.copy_from_slice(b);
+        self.lu
+            .solve_in_place(faer::MatMut::from_column_major_slice_mut(x, self.n, 1));
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err(SolveError::Singular("non-finite solution".into()));
+        }
+        Ok(SolveInfo {
+            iterations: 1,
+            residual_history: vec![],
+            converged: true,
+        })
+    }
+}
+
 /// faer sparse LU of a [`Stencil9`].
 #[derive(Default)]
 pub struct DirectLu {
-    lu: Option<Lu<usize, f64>>,
-    n: usize,
+    lu: Option<SparseLu>,
 }
 
 impl DirectLu {
@@ -45,14 +78,7 @@ fn triplets(a: &Stencil9) -> Vec<Triplet<usize, usize, f64>> {
 
 impl LinearSolver for DirectLu {
     fn setup(&mut self, a: &Stencil9) -> Result<(), SolveError> {
-        let n = a.len();
-        let m = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets(a))
-            .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
-        let lu = m
-            .sp_lu()
-            .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
-        self.lu = Some(lu);
-        self.n = n;
+        self.lu = Some(SparseLu::factor(a.len(), &triplets(a))?);
         Ok(())
     }
 
@@ -62,19 +88,7 @@ impl LinearSolver for DirectLu {
         x: &mut [f64],
         _ctl: &SolveControl,
     ) -> Result<SolveInfo, SolveError> {
-        let lu = self.lu.as_ref().ok_or(SolveError::NotSetUp)?;
-        assert_eq!(b.len(), self.n);
-        x.copy_from_slice(b);
-        let rhs = faer::MatMut::from_column_major_slice_mut(x, self.n, 1);
-        lu.solve_in_place(rhs);
-        if x.iter().any(|v| !v.is_finite()) {
-            return Err(SolveError::Singular("non-finite solution".into()));
-        }
-        Ok(SolveInfo {
-            iterations: 1,
-            residual_history: vec![],
-            converged: true,
-        })
+        self.lu.as_ref().ok_or(SolveError::NotSetUp)?.solve(b, x)
     }
 
     fn name(&self) -> &'static str {

@@ -14,9 +14,9 @@
 //! A 3D black-box multigrid can implement the same trait and slot in.
 
 use super::stencil19::{Stencil19, C, OFFSETS};
+use crate::linsolve::direct::SparseLu;
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
-use faer::linalg::solvers::Solve;
-use faer::sparse::{linalg::solvers::Lu, SparseColMat, Triplet};
+use faer::sparse::Triplet;
 use rayon::prelude::*;
 
 /// A solver for 19-point structured systems `A x = b`.
@@ -49,8 +49,7 @@ pub fn by_name3(name: &str) -> Result<Box<dyn LinearSolver3>, String> {
 /// faer sparse LU of a [`Stencil19`]: exact, for tests and small blocks.
 #[derive(Default)]
 pub struct DirectLu3 {
-    lu: Option<Lu<usize, f64>>,
-    n: usize,
+    lu: Option<SparseLu>,
 }
 
 impl DirectLu3 {
@@ -73,14 +72,7 @@ impl LinearSolver3 for DirectLu3 {
                 }
             }
         }
-        let n = a.len();
-        let m = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &t)
-            .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
-        self.lu = Some(
-            m.sp_lu()
-                .map_err(|e| SolveError::Singular(format!("{e:?}")))?,
-        );
-        self.n = n;
+        self.lu = Some(SparseLu::factor(a.len(), &t)?);
         Ok(())
     }
 
@@ -90,18 +82,7 @@ impl LinearSolver3 for DirectLu3 {
         x: &mut [f64],
         _ctl: &SolveControl,
     ) -> Result<SolveInfo, SolveError> {
-        let lu = self.lu.as_ref().ok_or(SolveError::NotSetUp)?;
-        assert_eq!(b.len(), self.n);
-        x.copy_from_slice(b);
-        lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(x, self.n, 1));
-        if x.iter().any(|v| !v.is_finite()) {
-            return Err(SolveError::Singular("non-finite solution".into()));
-        }
-        Ok(SolveInfo {
-            iterations: 1,
-            residual_history: vec![],
-            converged: true,
-        })
+        self.lu.as_ref().ok_or(SolveError::NotSetUp)?.solve(b, x)
     }
 
     fn name(&self) -> &'static str {
