@@ -323,19 +323,26 @@ impl LoadedCase {
         Boundary2::new(pts, &self.block_place(k))
     }
 
-    /// The nodes of the four edges of block k (E1..E4), from their curves.
-    fn edge_point_lists(&self, k: usize) -> Result<[Vec<Vec3>; 4]> {
+    /// Rejects a block with fewer than 3 nodes along i or j.
+    pub(crate) fn check_size(&self, k: usize) -> Result<()> {
         let b = &self.case.blocks[k];
-        let place = self.block_place(k);
         if b.ni < 3 || b.nj < 3 {
             return Err(Error::input(
-                &place,
+                self.block_place(k),
                 format!(
                     "ni = {}, nj = {}: a block needs at least 3 nodes each way",
                     b.ni, b.nj
                 ),
             ));
         }
+        Ok(())
+    }
+
+    /// The nodes of the four edges of block k (E1..E4), from their curves.
+    fn edge_point_lists(&self, k: usize) -> Result<[Vec<Vec3>; 4]> {
+        let b = &self.case.blocks[k];
+        let place = self.block_place(k);
+        self.check_size(k)?;
         let mut out: [Vec<Vec3>; 4] = Default::default();
         for (e, spec) in Edge::ALL.into_iter().zip([&b.e1, &b.e2, &b.e3, &b.e4]) {
             let n = if e.runs_along_i() { b.ni } else { b.nj };

@@ -207,6 +207,24 @@ impl Grid3 {
         }
     }
 
+    /// A grid whose node (i, j, k) is `f(i, j, k)`.
+    pub fn from_fn(
+        ni: usize,
+        nj: usize,
+        nk: usize,
+        mut f: impl FnMut(usize, usize, usize) -> [f64; 3],
+    ) -> Self {
+        let mut g = Self::zeros(ni, nj, nk);
+        for k in 0..nk {
+            for j in 0..nj {
+                for i in 0..ni {
+                    g.set(i, j, k, f(i, j, k));
+                }
+            }
+        }
+        g
+    }
+
     /// A grid from coordinate arrays (i fastest, then j, then k).
     ///
     /// # Panics

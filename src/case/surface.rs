@@ -128,15 +128,7 @@ impl LoadedCase {
     pub fn surface_block(&self, k: usize) -> Result<(Box<dyn Surface>, [Vec<[f64; 2]>; 4])> {
         let b = &self.case.blocks[k];
         let place = self.block_place(k);
-        if b.ni < 3 || b.nj < 3 {
-            return Err(Error::input(
-                &place,
-                format!(
-                    "ni = {}, nj = {}: a block needs at least 3 nodes each way",
-                    b.ni, b.nj
-                ),
-            ));
-        }
+        self.check_size(k)?;
         let surface = self.surface(k)?;
         let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
         for (e, spec) in Edge::ALL.into_iter().zip([&b.e1, &b.e2, &b.e3, &b.e4]) {

@@ -107,15 +107,9 @@ mod tests {
     use super::*;
 
     fn box_grid(xs: &[f64], ys: &[f64], zs: &[f64]) -> Grid3 {
-        let mut g = Grid3::zeros(xs.len(), ys.len(), zs.len());
-        for (k, z) in zs.iter().enumerate() {
-            for (j, y) in ys.iter().enumerate() {
-                for (i, x) in xs.iter().enumerate() {
-                    g.set(i, j, k, [*x, *y, *z]);
-                }
-            }
-        }
-        g
+        Grid3::from_fn(xs.len(), ys.len(), zs.len(), |i, j, k| {
+            [xs[i], ys[j], zs[k]]
+        })
     }
 
     #[test]
