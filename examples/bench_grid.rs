@@ -5,11 +5,13 @@
 //! [--no-plain] [--history]`
 //!
 //! Cases: the curved quadrilateral of `examples/curved.toml` and the boundary-layer block of
-//! `examples/boundary_layer.toml` with wall spacing 1e-5, at 257², 513², 1025² nodes
-//! (`--quick`: 129², 257²). For each:
+//! `examples/boundary_layer.toml` with wall spacing 1e-5 (`bl-1e-5`; and `bl-ar1e4`, with
+//! wall-tangential spacings of 0.15 at both ends: aspect ratios ≥ 1e4), at 257², 513², 1025²
+//! nodes (`--quick`: 129², 257²). For each:
 //! - `linear`: the Picard system at the final grid (both coordinates' right-hand sides, x
-//!   from zero): V-cycles to reduce the residual by 1e-10, mean factor per cycle, setup
-//!   (first setup, allocation included) and solve seconds, ns per unknown per cycle;
+//!   from zero): cycles of the default multigrid (F(1,1)) to reduce the residual by 1e-10,
+//!   mean factor per cycle, setup (first setup, allocation included) and solve seconds, ns
+//!   per unknown per cycle;
 //! - `mg+nested`: the whole generation (tolerance 1e-10) by nested iteration with multigrid:
 //!   Picard steps per level (coarsest first), seconds, work units (`ellipgrid::nested`);
 //! - `mg plain`: plain Picard with multigrid from the transfinite grid;
@@ -89,7 +91,12 @@ fn linear(label: &str, b: &Boundary2<2>, g: &Grid2<2>) {
                 mg.solve(bc, &mut x, &ctl)
             };
             let t_solve = t.elapsed().as_secs_f64();
-            let what = if krylov { "BiCGSTAB+V" } else { "V-cycles" };
+            let cyc = format!("{:?}", MgParams::default().cycle);
+            let what = if krylov {
+                format!("BiCGSTAB+{cyc}")
+            } else {
+                format!("{cyc}-cycles")
+            };
             let info = match r {
                 Ok(info) => info,
                 Err(e) => {
@@ -97,7 +104,7 @@ fn linear(label: &str, b: &Boundary2<2>, g: &Grid2<2>) {
                     continue;
                 }
             };
-            // cycles: one per V-cycle, two per Bi-CGSTAB iteration
+            // cycles: one per cycle, two per Bi-CGSTAB iteration
             let k = info.iterations.max(1) * if krylov { 2 } else { 1 };
             let factor = info
                 .residual_history
@@ -133,7 +140,7 @@ fn whole(
         .map(|s| s.linear_iterations.iter().max().copied().unwrap_or(0))
         .sum();
     println!(
-        "{label:<8} {:>5}²  {what:<9} Picard {} (levels {}) conv {}  V-cycles {cycles:>2}  {:7.3}s  {:6.1} WU (1 WU = {:.2} ms)  res {:.1e}",
+        "{label:<8} {:>5}²  {what:<9} Picard {} (levels {}) conv {}  cycles {cycles:>2}  {:7.3}s  {:6.1} WU (1 WU = {:.2} ms)  res {:.1e}",
         b.ni(),
         r.picard.steps,
         steps.join("/"),
@@ -177,10 +184,16 @@ fn main() {
         rayon::current_num_threads()
     );
     type Case = (&'static str, &'static str, fn(String) -> String);
-    let cases: [Case; 2] = [
+    let cases: [Case; 3] = [
         ("curved", "curved.toml", |s| s),
         ("bl-1e-5", "boundary_layer.toml", |s| {
             s.replace("first = 1e-4", "first = 1e-5")
+        }),
+        // wall spacing 1e-5, wall-tangential spacing 0.15 at the in- and outflow ends:
+        // aspect ratios 1.5e4 there, as in the far wake of a Navier–Stokes grid
+        ("bl-ar1e4", "boundary_layer.toml", |s| {
+            s.replace("first = 1e-4", "first = 1e-5")
+                .replace("first = 0.01, last = 0.02", "first = 0.15, last = 0.15")
         }),
     ];
     for (label, file, edit) in cases {

@@ -161,11 +161,11 @@ fn main() {
          err = |x - x*|/|x*|; faer LU = factor + solve",
         rayon::current_num_threads()
     );
-    let v11 = MgParams::default();
-    let f11 = MgParams {
-        cycle: Cycle::F,
+    let v11 = MgParams {
+        cycle: Cycle::V,
         ..MgParams::default()
     };
+    let f11 = MgParams::default();
     let acc = MgParams {
         accelerate: true,
         ..MgParams::default()
@@ -174,9 +174,11 @@ fn main() {
         let n = nodes - 2;
         let p5 = constant(n, [0.0, -1.0, 0.0, -1.0, 4.0, -1.0, 0.0, -1.0, 0.0]);
         run("poisson5", nodes, &p5, &v11, nodes <= 513);
+        run("poisson5", nodes, &p5, &f11, false);
         drop(p5);
         let p9 = constant(n, [-1.0, -4.0, -1.0, -4.0, 20.0, -4.0, -1.0, -4.0, -1.0]);
         run("poisson9", nodes, &p9, &v11, nodes <= 513);
+        run("poisson9", nodes, &p9, &f11, false);
     }
     for &nodes in bl_sizes {
         let a = boundary_layer(nodes, 1e-5, 10.0);

@@ -7,6 +7,7 @@ use ellipgrid::case::LoadedCase;
 use ellipgrid::domain::ControlKind;
 use ellipgrid::io::plot3d::{read_plot3d, write_plot3d, Plot3dFormat};
 use ellipgrid::io::Block;
+use ellipgrid::linsolve::SolveError;
 use ellipgrid::poisson2d::PicardParams;
 use ellipgrid::volume::case3d::volume_faces;
 use ellipgrid::volume::{grid_volume, transfinite, BiCgStabIlu, Faces};
@@ -91,16 +92,24 @@ fn rms_common(coarse: &Grid3, fine: &Grid3) -> f64 {
     (sum / (n * m * l) as f64).sqrt()
 }
 
+/// The warped cube at 9³, 17³, 33³ and 65³ nodes: the rms differences between successive
+/// grids (at the coarser grid's nodes) fall by 3.16 and then 3.55 per halving, i.e. towards
+/// the 4 of a second-order discretization once the grid resolves the warping.
 #[test]
 fn second_order_convergence_under_refinement() {
-    let g: Vec<Grid3> = [9, 17, 33]
+    let g: Vec<Grid3> = [9, 17, 33, 65]
         .iter()
         .map(|&n| solve(&warped_cube(n, true), None))
         .collect();
-    let (d1, d2) = (rms_common(&g[0], &g[1]), rms_common(&g[1], &g[2]));
-    let ratio = d1 / d2;
-    eprintln!("rms differences {d1:.3e} {d2:.3e}, ratio {ratio:.2}");
-    assert!(ratio > 3.0 && ratio < 5.0, "ratio {ratio}");
+    let d: Vec<f64> = (0..3).map(|k| rms_common(&g[k], &g[k + 1])).collect();
+    let (r1, r2) = (d[0] / d[1], d[1] / d[2]);
+    eprintln!(
+        "rms differences {:.3e} {:.3e} {:.3e}, ratios {r1:.2} {r2:.2}",
+        d[0], d[1], d[2]
+    );
+    assert!(r1 > 3.0 && r1 < 5.0, "ratio {r1}");
+    assert!(r2 > 3.4 && r2 < 4.6, "ratio {r2}");
+    assert!((r2 - 4.0).abs() < (r1 - 4.0).abs(), "ratios {r1} {r2}");
 }
 
 fn tmp() -> tempfile::TempDir {
@@ -233,6 +242,9 @@ fn wing_block_holds_the_prescribed_wall_spacing_fold_free() {
     for (key, from, to) in [("ni", 65, 41), ("nj", 49, 33), ("nk", 25, 13)] {
         text = text.replace(&format!("{key} = {from}"), &format!("{key} = {to}"));
     }
+    if let Ok(extra) = std::env::var("WING_EXTRA") {
+        text = text.replace("\nwall = \"F3\"\n", &format!("\nwall = \"F3\"\n{extra}\n"));
+    }
     let case = LoadedCase::parse(&text, &path).unwrap();
     let (_, block, rep) = generate_volume(&case, 0).unwrap();
     assert!(rep.picard.converged, "{:?}", rep.picard);
@@ -260,4 +272,310 @@ fn wing_block_holds_the_prescribed_wall_spacing_fold_free() {
     }
     // The correction reaches ~1 % (the rest is arclength vs x/c interpolation).
     assert!(worst < 0.03, "worst relative error {worst}");
+    // Near-wall orthogonality (`wall_orthogonal`, default on): off the wall face's rim the
+    // first grid lines leave within 0.5° of the wall normal (measured 0.005°, without it 57°,
+    // mean 25°) and the wall-normal distance of the first off-wall node is within 20 % of the
+    // target (measured 1.000 … 1.011, without it down to 0.55). `WING_EXTRA` adds keys to the
+    // case (`wall_orthogonal = false` prints those numbers and fails).
+    let w = ellipgrid::volume::wall::parse_face("F3").unwrap();
+    let hn = ellipgrid::volume::wall::wall_normal::normal_heights(&g, w);
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for k in 1..nk - 1 {
+        let (le, te) = (g.point(0, 0, k), g.point(ni - 1, 0, k));
+        let chord = te[0] - le[0];
+        for i in 1..ni - 1 {
+            let p0 = g.point(i, 0, k);
+            let target = chord * (1e-5 + 1e-5 * (p0[0] - le[0]) / chord);
+            let r = hn[i + ni * k] / target;
+            lo = lo.min(r);
+            hi = hi.max(r);
+        }
+    }
+    let f = &rep.quality.faces[w];
+    eprintln!(
+        "wing upper [41, 33, 13]: angle from the wall normal max {:.3}° mean {:.3}°, normal \
+         distance / target {lo:.3} .. {hi:.3}, folded {}, {} Picard steps, {:.2} s",
+        f.orthogonality_max_deg,
+        f.orthogonality_mean_deg,
+        rep.quality.folded_cells,
+        rep.picard.steps,
+        rep.seconds
+    );
+    assert!(
+        lo >= 0.8 && hi <= 1.2,
+        "normal distance / target {lo} .. {hi}"
+    );
+    assert!(f.orthogonality_max_deg < 0.5, "{}", rep.quality);
+}
+
+/// A warped box of `d` nodes with clustering towards j = 0 (as examples/bench_volume.rs).
+fn warped_box(d: [usize; 3]) -> Faces {
+    let h = d.map(|n| (n - 1) as f64);
+    let g = Grid3::from_fn(d[0], d[1], d[2], |i, j, k| {
+        let (x, z) = (i as f64 / h[0], k as f64 / h[2]);
+        let y = ((j as f64 / h[1]) * 3.0).sinh() / 3f64.sinh();
+        [
+            x + 0.1 * (std::f64::consts::PI * y).sin() * z,
+            y + 0.15 * (std::f64::consts::PI * x).sin() * (1.0 - y),
+            z + 0.1 * x * y,
+        ]
+    });
+    Faces::from_grid(&g)
+}
+
+/// Largest node distance of two grids relative to the diameter of the first.
+fn max_difference(a: &Grid3, b: &Grid3) -> f64 {
+    let diam = (0..3)
+        .map(|c| {
+            let v = a.coord(c);
+            let (lo, hi) = v
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(l, h), &x| (l.min(x), h.max(x)));
+            (hi - lo).powi(2)
+        })
+        .sum::<f64>()
+        .sqrt();
+    (0..3)
+        .flat_map(|c| {
+            a.coord(c)
+                .iter()
+                .zip(b.coord(c))
+                .map(|(u, v)| (u - v).abs())
+        })
+        .fold(0.0, f64::max)
+        / diam
+}
+
+fn nested_solve(
+    faces: &Faces,
+    nested: bool,
+    forcing: f64,
+) -> (
+    ellipgrid::volume::VolumeResult,
+    ellipgrid::volume::nested3d::NestedInfo3,
+) {
+    let params = PicardParams {
+        tolerance: 1e-12,
+        nested: Some(nested),
+        linear_forcing: forcing,
+        ..PicardParams::default()
+    };
+    let (r, info) = ellipgrid::volume::nested3d::grid_volume_nested(
+        faces,
+        ControlKind::Algebraic,
+        &mut BiCgStabIlu::new(),
+        &params,
+        "box",
+        &mut |_, _| {},
+    )
+    .unwrap();
+    assert!(r.picard.converged, "{:?}", r.picard);
+    (r, info)
+}
+
+#[test]
+fn nested_iteration_gives_the_plain_picard_grid_and_reports_work_units() {
+    // 17 × 17 × 21 → 9 × 9 × 11: one coarse level; 33³ → 17³ → 9³: two (Richardson).
+    for d in [[17, 17, 21], [33, 33, 33]] {
+        let faces = warped_box(d);
+        let (plain, pi) = nested_solve(&faces, false, 0.1);
+        let (nested, ni) = nested_solve(&faces, true, 0.1);
+        let diff = max_difference(&plain.grid, &nested.grid);
+        eprintln!(
+            "{d:?}: nested - plain {diff:.2e}, plain {} steps, {:?}",
+            plain.picard.steps, ni.levels
+        );
+        assert!(diff < 1e-9, "{d:?}: nested differs by {diff:.2e}");
+        let coarse = if d[0] == 17 { 1 } else { 2 };
+        assert_eq!(ni.levels.len(), coarse + 1, "{ni:?}");
+        assert_eq!(nested.picard.coarse_steps.len(), coarse);
+        assert!(ni.levels.iter().all(|l| l.converged), "{ni:?}");
+        assert_eq!(ni.levels[0].ni, (d[0] - 1) / (1 << coarse) + 1);
+        assert!(pi.levels.len() == 1 && plain.picard.coarse_steps.is_empty());
+        for (r, i) in [(&plain, &pi), (&nested, &ni)] {
+            let wu = r.picard.work_units.unwrap();
+            assert!(
+                wu > 0.0 && wu.is_finite() && i.work_unit_seconds > 0.0,
+                "{i:?}"
+            );
+            assert!((wu - i.work_units).abs() < 1e-12 * wu);
+        }
+        // The coarse levels predict the fine grid: a much smaller first fine update.
+        let first = |r: &ellipgrid::volume::VolumeResult| r.picard.history[0].update;
+        eprintln!(
+            "first updates: plain {:.2e}, nested {:.2e}",
+            first(&plain),
+            first(&nested)
+        );
+        assert!(first(&nested) < 0.1 * first(&plain), "{d:?}");
+        assert!(nested.picard.steps <= plain.picard.steps, "{d:?}");
+    }
+}
+
+#[test]
+fn inexact_picard_has_the_fixed_point_of_exact_picard() {
+    let faces = warped_box([17, 13, 21]);
+    let (exact, _) = nested_solve(&faces, false, 0.0);
+    let (inexact, _) = nested_solve(&faces, false, 0.1);
+    let diff = max_difference(&exact.grid, &inexact.grid);
+    eprintln!("inexact - exact {diff:.2e}");
+    assert!(diff < 1e-9, "inexact differs by {diff:.2e}");
+    let its = |r: &ellipgrid::volume::VolumeResult| -> usize {
+        r.picard
+            .history
+            .iter()
+            .flat_map(|s| s.linear_iterations.iter())
+            .sum()
+    };
+    assert!(
+        2 * its(&inexact) < its(&exact),
+        "{} vs {} Bi-CGSTAB iterations",
+        its(&inexact),
+        its(&exact)
+    );
+}
+
+#[test]
+fn even_dimensions_fall_back_to_plain_picard() {
+    let faces = warped_box([16, 17, 17]);
+    let (nested, info) = nested_solve(&faces, true, 0.1);
+    assert_eq!(info.levels.len(), 1, "{info:?}");
+    assert!(nested.picard.coarse_steps.is_empty());
+    assert!(nested.picard.work_units.unwrap() > 0.0);
+    // grid_volume takes the nested path by default with Bi-CGSTAB: same grid.
+    let r = grid_volume(
+        &faces,
+        None,
+        ControlKind::Algebraic,
+        &mut BiCgStabIlu::new(),
+        &PicardParams {
+            tolerance: 1e-12,
+            ..PicardParams::default()
+        },
+        "box",
+        &mut |_, _| {},
+    )
+    .unwrap();
+    assert!(r.picard.work_units.is_some());
+    assert!(max_difference(&nested.grid, &r.grid) < 1e-12);
+}
+
+/// Bi-CGSTAB/ILU(0) that refuses operators of fewer than `min` unknowns: a failing coarse
+/// level.
+struct FailsWhenSmall {
+    inner: BiCgStabIlu,
+    min: usize,
+}
+
+impl ellipgrid::volume::LinearSolver3 for FailsWhenSmall {
+    fn setup(&mut self, a: &ellipgrid::volume::Stencil19) -> Result<(), SolveError> {
+        if a.len() < self.min {
+            return Err(SolveError::Singular("too small".into()));
+        }
+        self.inner.setup(a)
+    }
+
+    fn solve(
+        &self,
+        b: &[f64],
+        x: &mut [f64],
+        ctl: &ellipgrid::linsolve::SolveControl,
+    ) -> Result<ellipgrid::linsolve::SolveInfo, SolveError> {
+        self.inner.solve(b, x, ctl)
+    }
+
+    fn name(&self) -> &'static str {
+        "fails-when-small"
+    }
+}
+
+#[test]
+fn a_failing_coarse_level_is_skipped() {
+    let faces = warped_box([33, 33, 33]);
+    let (plain, _) = nested_solve(&faces, false, 0.1);
+    // 9³ fails (343 unknowns), 17³ starts from the transfinite grid, 33³ from 17³.
+    let mut solver = FailsWhenSmall {
+        inner: BiCgStabIlu::new(),
+        min: 1000,
+    };
+    let params = PicardParams {
+        tolerance: 1e-12,
+        nested: Some(true),
+        ..PicardParams::default()
+    };
+    let (r, info) = ellipgrid::volume::nested3d::grid_volume_nested(
+        &faces,
+        ControlKind::Algebraic,
+        &mut solver,
+        &params,
+        "box",
+        &mut |_, _| {},
+    )
+    .unwrap();
+    assert!(r.picard.converged);
+    let conv: Vec<bool> = info.levels.iter().map(|l| l.converged).collect();
+    assert_eq!(conv, [false, true, true], "{info:?}");
+    assert_eq!(r.picard.coarse_steps[0], 0);
+    assert!(max_difference(&plain.grid, &r.grid) < 1e-9);
+}
+
+/// The 3D multigrid through the CLI: the warped cube with `linear = "multigrid"` gives the
+/// grid of `linear = "bicgstab"` to the Picard tolerance, and the report names the solver;
+/// `smooth --linear multigrid` regrids the volume block with it too.
+#[test]
+fn cli_volume_multigrid_equals_bicgstab() {
+    let d = tmp();
+    let text0 = fs::read_to_string(root().join("examples/volume_warped_cube.toml")).unwrap();
+    let mut grids = Vec::new();
+    for solver in ["multigrid", "bicgstab"] {
+        let case = text0
+            .replace("linear = \"bicgstab\"", &format!("linear = \"{solver}\""))
+            .replace("= 25", "= 21");
+        fs::write(d.path().join(format!("{solver}.toml")), case).unwrap();
+        let out = format!("{solver}.x");
+        let rep = format!("{solver}.json");
+        let o = ellipgrid(
+            d.path(),
+            &[
+                "run",
+                &format!("{solver}.toml"),
+                "-o",
+                &out,
+                "--report",
+                &rep,
+            ],
+        );
+        assert!(o.status.success(), "{}", text(&o));
+        let r: serde_json::Value =
+            serde_json::from_str(&fs::read_to_string(d.path().join(&rep)).unwrap()).unwrap();
+        let p = &r["volumes"][0]["picard"];
+        assert_eq!(p["converged"], true);
+        assert!(
+            p["linear_solver"].as_str().unwrap().starts_with(solver),
+            "{p}"
+        );
+        let f = read_plot3d(&d.path().join(&out)).unwrap();
+        let Block::Volume(g) = f.blocks[0].clone() else {
+            panic!("not a volume")
+        };
+        grids.push(g);
+    }
+    let diam = 1.5;
+    for c in 0..3 {
+        for (u, v) in grids[0].coord(c).iter().zip(grids[1].coord(c)) {
+            assert!((u - v).abs() < 1e-8 * diam, "{u} vs {v}");
+        }
+    }
+    let s = ellipgrid(
+        d.path(),
+        &[
+            "smooth",
+            "multigrid.x",
+            "-o",
+            "s.x",
+            "--linear",
+            "multigrid",
+        ],
+    );
+    assert!(s.status.success(), "{}", text(&s));
 }

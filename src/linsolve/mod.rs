@@ -57,12 +57,20 @@ pub trait LinearSolver: Send + Sync {
     /// Solves `A x = b` for the operator of the last `setup`; `x` holds the initial guess.
     fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError>;
 
+    /// Prepares the solver for `a`, a small change of the operator of the last `setup` (a
+    /// later step of a converging Picard iteration). Iterative solvers may keep parts of the
+    /// last setup (multigrid: its coarse levels) as long as `solve` still solves `A x = b`
+    /// for this `a`. Default: a full `setup`.
+    fn update(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+        self.setup(a)
+    }
+
     /// A short name for reports ("direct-lu", "multigrid").
     fn name(&self) -> &'static str;
 }
 
 /// The linear solver called `name` in case files: "direct" (sparse LU, the reference) or
-/// "multigrid" ([`MultigridSafe`] with the default [`MgParams`]: V(1,1) cycles with
+/// "multigrid" ([`MultigridSafe`] with the default [`MgParams`]: F(1,1) cycles with
 /// alternating zebra line Gauss–Seidel, Bi-CGSTAB as the fallback; the default of case files).
 pub fn by_name(name: &str) -> Result<Box<dyn LinearSolver>, String> {
     match name {
@@ -79,15 +87,16 @@ pub fn by_name(name: &str) -> Result<Box<dyn LinearSolver>, String> {
 /// Bi-CGSTAB preconditioned with one cycle ([`crate::multigrid::bicgstab`]). At most
 /// [`MultigridSafe::PLAIN_CYCLES`] plain cycles are tried.
 ///
-/// Why: the plain V-cycle contracts at 0.01–0.05 on the grid systems measured, but was seen
-/// to diverge on some boundary-layer systems (wall spacing 1e-5 at 1025² nodes) where the
-/// same cycle as a Bi-CGSTAB preconditioner still converges fast. `iterations` counts cycles
+/// Why: the plain cycles contract at 0.01–0.05 on every grid system measured since the
+/// restriction became `Pᵀ` and the cycle F, but the V-cycle with the adjoint restriction
+/// diverged on a boundary-layer system (wall spacing 1e-5 at 1025² nodes) where the same
+/// cycle as a Bi-CGSTAB preconditioner still converged fast: the fallback is the safety net
+/// for systems nobody has measured yet. `iterations` counts cycles
 /// (two per Bi-CGSTAB iteration, plus the plain cycles of an attempt that ran out of
 /// iterations; those of an attempt that diverged are not reported by [`Multigrid`]).
 #[derive(Debug, Default)]
 pub struct MultigridSafe {
     mg: Multigrid,
-    a: Option<Stencil9>,
 }
 
 impl MultigridSafe {
@@ -98,7 +107,6 @@ impl MultigridSafe {
     pub fn new(params: MgParams) -> Self {
         MultigridSafe {
             mg: Multigrid::new(params),
-            a: None,
         }
     }
 
@@ -110,17 +118,14 @@ impl MultigridSafe {
 
 impl LinearSolver for MultigridSafe {
     fn setup(&mut self, a: &Stencil9) -> Result<(), SolveError> {
-        match &mut self.a {
-            Some(own) if own.len() == a.len() && own.nx() == a.nx() => {
-                own.coefs_mut().copy_from_slice(a.coefs())
-            }
-            own => *own = Some(a.clone()),
-        }
         self.mg.setup(a)
     }
 
+    fn update(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+        self.mg.update(a)
+    }
+
     fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError> {
-        let a = self.a.as_ref().ok_or(SolveError::NotSetUp)?;
         let mut y = x.to_vec();
         // plain cycles contract at ≤ 0.05 where they work: 12 of them reach 1e-13, so more
         // would only be a slow or diverging iteration
@@ -137,7 +142,7 @@ impl LinearSolver for MultigridSafe {
             Err(SolveError::Diverged(_)) => 0,
             Err(e) => return Err(e),
         };
-        let mut info = crate::multigrid::bicgstab(a, b, x, &self.mg, ctl)?;
+        let mut info = self.mg.bicgstab(b, x, ctl)?;
         info.iterations = tried + 2 * info.iterations;
         Ok(info)
     }

@@ -33,10 +33,11 @@
 //!   coarse corners `K`.
 //!
 //! # Restriction
-//! [`super::Restriction::Adjoint`] (default, as MGD9V): the transpose of the prolongation built
-//! by the formulas above from the adjoint operator `A*` (the roles of `m` and `m*` swapped),
-//! so that the restriction follows the transposed operator for non-symmetric problems.
-//! [`super::Restriction::Transpose`]: `R = Pᵀ`. For a symmetric operator both are the same.
+//! [`super::Restriction::Transpose`] (default): `R = Pᵀ`.
+//! [`super::Restriction::Adjoint`] (as MGD9V): the transpose of the prolongation built by the
+//! formulas above from the adjoint operator `A*` (the roles of `m` and `m*` swapped), so that
+//! the restriction follows the transposed operator for non-symmetric problems. For a
+//! symmetric operator both are the same; see [`super::Restriction`] for why `Pᵀ` is the default.
 
 use super::use_par;
 use crate::linsolve::SolveError;

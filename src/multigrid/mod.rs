@@ -7,7 +7,7 @@
 //! | phase | file | method |
 //! |---|---|---|
 //! | hierarchy, setup vs refresh | `setup.rs` | coarsening by 2 in both directions down to `coarse_enough` |
-//! | transfer operators | `interp.rs` | matrix-dependent prolongation (Dendy's collapse, de Zeeuw's upwind split); restriction from the adjoint operator |
+//! | transfer operators | `interp.rs` | matrix-dependent prolongation (Dendy's collapse, de Zeeuw's upwind split); restriction `Pᵀ` (or from the adjoint operator) |
 //! | coarse operators | `rap.rs` | Galerkin `R A P`, nine-point on every level |
 //! | smoother | `relax.rs` | alternating zebra line Gauss–Seidel (Thomas algorithm per line, lines of one colour in parallel) |
 //! | cycles | `cycle.rs` | V, F, W; banded LU on the coarsest grid (`coarse.rs`) |
@@ -49,10 +49,14 @@
 //! non-power-of-two sizes 0.01–0.04, ε = 1e-4 anisotropy in x or in y < 1e-4, boundary-layer
 //! grids (first spacing 1e-5, aspect ratio 1.6e4, clustered at a wall in x or in y) 0.002,
 //! non-symmetric mixed-derivative stencils (|Q| ≤ 0.9 √(PR), R/P up to 100, cell Péclet
-//! number ≤ 0.8) 0.02–0.06. Central convection with cell Péclet numbers above 1 (positive
-//! off-diagonal couplings) degrades the V-cycle (0.11 at 1.5, 0.25 at 2, 0.93 at 3, divergence
-//! at 4); F/W-cycles give 0.03–0.05 up to 2.5 (W: 0.07 at 3), and `accelerate` (Bi-CGSTAB,
-//! two V-cycles per iteration) ≤ 0.05 per iteration up to 4.
+//! number ≤ 0.8) 0.03–0.09. Central convection with cell Péclet numbers above 1 (positive
+//! off-diagonal couplings) degrades the V-cycle (0.18 at 1.5, 0.30 at 3, 0.35 at 4);
+//! `accelerate` (Bi-CGSTAB, two V-cycles per iteration) gives ≤ 0.15 per iteration up to 4.
+//! With the adjoint restriction the V-cycle is better for mild convection (0.02 for the
+//! mixed-derivative case, 0.11 at Péclet 1.5) but fails beyond (0.93 at 3, divergence at 4) and
+//! on the boundary-layer Picard system at 1025² — hence `Pᵀ` by default.
+//! The actual Picard systems (`examples/bench_grid.rs`): curved domain 0.03–0.05 per cycle
+//! from 257² to 2049², boundary layer with wall spacing 1e-5 and 1e-6 about 0.07.
 
 mod coarse;
 mod cycle;
@@ -77,10 +81,12 @@ use std::sync::Mutex;
 /// Cycle type.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Cycle {
-    /// One coarse-grid correction per level (default).
-    #[default]
+    /// One coarse-grid correction per level.
     V,
-    /// An F-cycle then a V-cycle on each coarser level.
+    /// An F-cycle then a V-cycle on each coarser level (default): 15–25 % dearer than V,
+    /// but it holds 0.03 per cycle on the boundary-layer Picard system with aspect ratios
+    /// 1.5e4 at 1025², where the V-cycle's coarse levels let it slip to 0.27.
+    #[default]
     F,
     /// Two coarse-grid corrections per level.
     W,
@@ -106,11 +112,15 @@ pub enum Smoother {
 /// Restriction operator.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Restriction {
-    /// Transpose of the prolongation built from the adjoint operator `Aᵀ` (de Zeeuw; default).
-    /// Equal to `Pᵀ` for a symmetric operator; better for non-symmetric ones.
-    #[default]
+    /// Transpose of the prolongation built from the adjoint operator `Aᵀ` (de Zeeuw's
+    /// MGD9V). Equal to `Pᵀ` for a symmetric operator. Slightly better for mild convection,
+    /// but its Petrov–Galerkin coarse operators can lose stability: the V-cycle diverged on
+    /// the boundary-layer Picard system at 1025² (wall spacing 1e-5) and for cell Péclet
+    /// numbers ≥ 4.
     Adjoint,
-    /// `R = Pᵀ`.
+    /// `R = Pᵀ` (default): Galerkin coarse operators; converged on every case measured
+    /// (`tests.rs` `explore_factors`; boundary-layer Picard systems to 1025², spacing 1e-6).
+    #[default]
     Transpose,
 }
 
@@ -118,7 +128,7 @@ pub enum Restriction {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct MgParams {
-    /// Cycle type. Default [`Cycle::V`].
+    /// Cycle type. Default [`Cycle::F`].
     pub cycle: Cycle,
     /// Smoothing steps before the coarse-grid correction. Default 1.
     pub npre: usize,
@@ -131,7 +141,7 @@ pub struct MgParams {
     pub max_levels: usize,
     /// Smoother. Default [`Smoother::AlternatingZebraLine`].
     pub smoother: Smoother,
-    /// Restriction. Default [`Restriction::Adjoint`].
+    /// Restriction. Default [`Restriction::Transpose`].
     pub restriction: Restriction,
     /// Run Bi-CGSTAB preconditioned by one cycle instead of plain cycles. Default false.
     pub accelerate: bool,
@@ -140,13 +150,13 @@ pub struct MgParams {
 impl Default for MgParams {
     fn default() -> Self {
         MgParams {
-            cycle: Cycle::V,
+            cycle: Cycle::F,
             npre: 1,
             npost: 1,
             coarse_enough: 64,
             max_levels: 30,
             smoother: Smoother::AlternatingZebraLine,
-            restriction: Restriction::Adjoint,
+            restriction: Restriction::Transpose,
             accelerate: false,
         }
     }
@@ -208,6 +218,39 @@ impl Multigrid {
     /// hierarchy only if `coarse_enough`, `max_levels`, `smoother` or `restriction` changed.
     pub fn set_params(&mut self, params: MgParams) {
         self.params = params;
+    }
+
+    /// Replaces the operator by `a`, a small change of the last one (the next step of a
+    /// converging Picard iteration): only the fine level is refreshed (its copy of `a` and
+    /// its line factors), the transfers and coarse operators of the last full
+    /// [`LinearSolver::setup`] are kept. The cycle then still solves `A x = b` for the new
+    /// `a` (residuals and smoothing use it); only its coarse-grid correction is that of a
+    /// nearby operator. Costs about a third of a full setup on large grids. Falls back to
+    /// the full setup when there is no hierarchy of this size.
+    pub fn update(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+        match self.h.as_mut() {
+            Some(h) if h.fits(a.nx(), a.ny(), &self.params) => {
+                h.params = self.params.clone();
+                let res = h.refresh_fine(a);
+                if res.is_err() {
+                    self.h = None;
+                }
+                res
+            }
+            _ => self.setup(a),
+        }
+    }
+
+    /// Bi-CGSTAB preconditioned by one cycle on the operator of the last setup or update
+    /// (its fine-level copy: no second copy of the caller's operator is kept).
+    pub fn bicgstab(
+        &self,
+        b: &[f64],
+        x: &mut [f64],
+        ctl: &SolveControl,
+    ) -> Result<SolveInfo, SolveError> {
+        let l0 = &self.hierarchy()?.levels[0];
+        krylov::bicgstab_coefs(&l0.a, l0.nx, l0.ny, b, x, self, ctl)
     }
 
     /// The hierarchy of the last `setup`, if any.
@@ -341,11 +384,14 @@ impl LinearSolver for Multigrid {
         assert_eq!(x.len(), n, "multigrid: solution length");
         if h.params.accelerate {
             // the clipped fine operator of the hierarchy is the Krylov operator
-            let l0 = &h.levels[0];
-            krylov::bicgstab_coefs(&l0.a, l0.nx, l0.ny, b, x, self, ctl)
+            self.bicgstab(b, x, ctl)
         } else {
             self.solve_cycles(h, b, x, ctl)
         }
+    }
+
+    fn update(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+        Multigrid::update(self, a)
     }
 
     fn name(&self) -> &'static str {

@@ -109,18 +109,43 @@ impl Hierarchy {
             && p.restriction == q.restriction
     }
 
-    /// Computes every value of the hierarchy for operator `a` (same size as level 0).
-    pub(super) fn refresh(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+    /// Copies `a` (same size as level 0) into level 0, clipped; rejects a bad diagonal.
+    fn load_fine(&mut self, a: &Stencil9) -> Result<(), SolveError> {
         let (nx, ny) = (a.nx(), a.ny());
         let l0 = &mut self.levels[0];
         assert_eq!((l0.nx, l0.ny), (nx, ny));
         copy_clipped(a, &mut l0.a);
-        if let Some((i, j)) = first_bad_diagonal(&l0.a, nx) {
-            return Err(SolveError::Singular(format!(
+        match first_bad_diagonal(&l0.a, nx) {
+            Some((i, j)) => Err(SolveError::Singular(format!(
                 "multigrid: zero or non-finite diagonal {:e} at unknown ({i}, {j})",
                 l0.a[i + nx * j][4]
-            )));
+            ))),
+            None => Ok(()),
         }
+    }
+
+    /// Replaces the fine operator by `a` (same size as level 0) and refactors the fine
+    /// smoother, keeping the transfer and coarse operators of the last [`Hierarchy::refresh`]
+    /// (see [`super::Multigrid::update`]).
+    pub(super) fn refresh_fine(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+        if self.levels.len() == 1 {
+            return self.refresh(a);
+        }
+        self.load_fine(a)?;
+        let l0 = &mut self.levels[0];
+        let (nx, ny) = (l0.nx, l0.ny);
+        if !l0.xop.is_empty() {
+            factor_x(&l0.a, nx, ny, &mut l0.xop)?;
+        }
+        if !l0.yop.is_empty() {
+            factor_y(&l0.a, nx, ny, &mut l0.yop)?;
+        }
+        Ok(())
+    }
+
+    /// Computes every value of the hierarchy for operator `a` (same size as level 0).
+    pub(super) fn refresh(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+        self.load_fine(a)?;
         let transpose = self.params.restriction == Restriction::Transpose;
         let nl = self.levels.len();
         for l in 0..nl {

@@ -8,7 +8,8 @@
 //! | edge functions, bilinear transformation [70–72] | [`bilinear3d`] |
 //! | control functions [83, 84] | [`control3d`] |
 //! | 19-point operator | [`stencil19`] |
-//! | grid system [86–88], Picard | [`picard3d`] |
+//! | grid system [86–88], (inexact) Picard | [`picard3d`] |
+//! | nested iteration, work units | [`nested3d`] |
 //! | linear solvers (Bi-CGSTAB/ILU(0), faer LU) | [`solver3d`] |
 //! | quality report | [`quality3d`] |
 //! | prescribed first-cell heights at a wall face | [`wall`] |
@@ -20,6 +21,8 @@ pub mod bilinear3d;
 pub mod case3d;
 pub mod control3d;
 pub mod faces;
+pub mod multigrid3d;
+pub mod nested3d;
 pub mod picard3d;
 pub mod quality3d;
 pub mod solver3d;
@@ -34,8 +37,11 @@ use crate::{Grid3, Result};
 pub use bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
 pub use control3d::Control3;
 pub use faces::{transfinite, Faces};
+pub use multigrid3d::{Mg3Params, Multigrid3};
 pub use quality3d::{quality3d, QualityReport3};
-pub use solver3d::{by_name3, BiCgStabIlu, DirectLu3, LinearSolver3};
+pub use solver3d::{
+    by_name3, for_block, BiCgStabIlu, DirectLu3, LinearSolver3, AUTO_MULTIGRID_NODES,
+};
 pub use stencil19::Stencil19;
 
 static PROGRESS: AtomicBool = AtomicBool::new(false);
@@ -72,7 +78,11 @@ pub fn control_for(faces: &Faces, kind: ControlKind, place: &str) -> Result<Cont
 
 /// Grids one volume block: transfinite start (or `start`, whose boundary nodes are replaced
 /// by the faces'), control functions of `kind`, Picard iteration of [86]. `progress` sees
-/// every Picard step.
+/// every Picard step (of the finest level).
+///
+/// Without `start`, and with nested iteration on ([`nested3d::nested_for3`]: by default with
+/// the multigrid and the Bi-CGSTAB solvers), the block is solved by [`nested3d`] instead,
+/// which also reports the work units.
 pub fn grid_volume(
     faces: &Faces,
     start: Option<Grid3>,
@@ -82,6 +92,10 @@ pub fn grid_volume(
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<VolumeResult> {
+    if start.is_none() && nested3d::nested_for3(params, solver.name()) {
+        return nested3d::grid_volume_nested(faces, kind, solver, params, place, progress)
+            .map(|r| r.0);
+    }
     let mut x = match start {
         Some(g) if g.dims() == faces.dims() => g,
         Some(g) => {

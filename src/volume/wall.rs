@@ -20,6 +20,14 @@
 //! way (2D: the straight-line parameters of [39, 40]), so that the interior and the faces agree.
 //! On the M6 block (65 × 49 × 25) the heights end within 1.2 % of 1e-5 … 2e-5 local chord
 //! (linear in x/c), fold-free, at about 5× the time of one solve.
+//!
+//! The lengths are not the wall-normal distances where the lines leave the wall obliquely (up to
+//! 57° on that block, 80° on the C–O block): with [`WallOptions::orthogonal`] (case key
+//! `wall_orthogonal`, default on) each pass also shifts the tangential parameters near the wall
+//! ([`wall_normal`]), and the v remap then measures wall-normal distances there. As a safeguard
+//! a grid that an orthogonal pass folds is not kept: the result is then the fold-free pass with
+//! the smallest largest wall angle (not triggered on the two M6 blocks, whose passes were all
+//! fold-free; early variants folded intermediate grids of the C–O block).
 
 use super::bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
 use super::control3d::Control3;
@@ -29,6 +37,9 @@ use crate::domain::ControlKind;
 use crate::poisson2d::{PicardInfo, PicardParams, PicardStep};
 use crate::transform::ParamGrid;
 use crate::{Error, Grid2, Grid3, Result};
+
+#[path = "wall_normal.rs"]
+pub mod wall_normal;
 
 /// Correction passes at most (each a re-solve from the current grid).
 pub const MAX_PASSES: usize = 6;
@@ -41,6 +52,22 @@ const LOOSE_TOLERANCE: f64 = 1e-8;
 const MAX_RATIO: f64 = 4.0;
 /// The exponent q of the weight (1 − v)^q: the correction fades out at v ≈ 1/q.
 const REMAP_POWER: i32 = 3;
+/// With `orthogonal`, passes also stop only once every shifted node is within this sine of the
+/// angle of its tangential goal ([`wall_normal`]).
+pub const ANGLE_TOLERANCE: f64 = 0.02;
+
+/// Options of the wall correction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WallOptions {
+    /// Also make the grid lines leave the wall along its normal ([`wall_normal`]).
+    pub orthogonal: bool,
+}
+
+impl Default for WallOptions {
+    fn default() -> Self {
+        WallOptions { orthogonal: true }
+    }
+}
 
 /// Parses a face name "F1" … "F6" into 0 … 5.
 pub fn parse_face(s: &str) -> Option<usize> {
@@ -320,11 +347,13 @@ pub fn correct_side_faces(
 /// One correction pass over the interior columns of a volume: remaps the normal parameter of
 /// `pg` from the distances in `x` towards the column goals (filled from the first grid seen,
 /// the uncorrected one, if empty). Returns the largest |ln(goal/d)| before the pass.
+/// With `ortho`, distances are measured as [`wall_normal::TangentGoals::distance`].
 fn remap_volume(
     pg: &mut ParamGrid3,
     x: &Grid3,
     targets: &WallTargets,
     goal: &mut Vec<Vec<f64>>,
+    ortho: Option<&wall_normal::TangentGoals>,
 ) -> f64 {
     let dims = pg.dims();
     let w = targets.w;
@@ -352,15 +381,26 @@ fn remap_volume(
                 .map(|n| n[0] + dims[0] * (n[1] + dims[1] * n[2]))
                 .collect();
             let p0 = x.point(wall_node[0], wall_node[1], wall_node[2]);
+            let c = (a - 1) + (na - 2) * (b - 1);
+            let nrm = ortho.and_then(|_| wall_normal::wall_normal(x, w, a, b));
             let dm: Vec<f64> = nodes
                 .iter()
-                .map(|n| dist(x.point(n[0], n[1], n[2]), p0))
+                .enumerate()
+                .map(|(j, n)| {
+                    let q = x.point(n[0], n[1], n[2]);
+                    match ortho {
+                        Some(o) => {
+                            let r = std::array::from_fn(|e| q[e] - p0[e]);
+                            o.distance(c, j, r, nrm)
+                        }
+                        None => dist(q, p0),
+                    }
+                })
                 .collect();
             let mut col_v: Vec<f64> = idx
                 .iter()
                 .map(|&p| if lo { v[p] } else { 1.0 - v[p] })
                 .collect();
-            let c = (a - 1) + (na - 2) * (b - 1);
             if goal.len() <= c {
                 let tg: Vec<f64> = (0..n_col).map(|j| targets.at(wall_node, j)).collect();
                 goal.push(blend_targets(&col_v, &dm, &tg));
@@ -374,13 +414,28 @@ fn remap_volume(
     err
 }
 
-/// Grids a volume block as [`super::grid_volume`] and then holds the wall-normal distances
-/// of the interior columns of wall face `w` to [`WallTargets`] (module docs): at most
-/// [`MAX_PASSES`] remaps of the algebraic parameters, each followed by a Picard solve from the
-/// current grid. The returned history is the concatenation of all solves.
+/// [`grid_volume_wall_with`] with the default [`WallOptions`].
 pub fn grid_volume_wall(
     faces: &Faces,
     w: usize,
+    solver: &mut dyn LinearSolver3,
+    params: &PicardParams,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<VolumeResult> {
+    let opts = WallOptions::default();
+    grid_volume_wall_with(faces, w, opts, solver, params, place, progress)
+}
+
+/// Grids a volume block as [`super::grid_volume`] and then holds the wall-normal distances
+/// of the interior columns of wall face `w` to [`WallTargets`] (module docs), with
+/// `opts.orthogonal` also the directions of the lines leaving the wall ([`wall_normal`]): at
+/// most [`MAX_PASSES`] remaps of the algebraic parameters, each followed by a Picard solve from
+/// the current grid. The returned history is the concatenation of all solves.
+pub fn grid_volume_wall_with(
+    faces: &Faces,
+    w: usize,
+    opts: WallOptions,
     solver: &mut dyn LinearSolver3,
     params: &PicardParams,
     place: &str,
@@ -392,6 +447,11 @@ pub fn grid_volume_wall(
     faces.apply_to(&mut x);
     let mut info: Option<PicardInfo> = None;
     let mut goal = Vec::new();
+    let mut tangent_goal: Option<wall_normal::TangentGoals> = None;
+    // With `orthogonal`: the fold-free intermediate grid with the smallest largest angle at
+    // the wall, and its parameters (the fallback if a later pass folds the grid).
+    let mut best: Option<(f64, ParamGrid3, Grid3)> = None;
+    let folded = |x: &Grid3| super::quality3d::quality3d(x).folded_cells;
     // Intermediate solves only need the near-wall distances to well under TOLERANCE.
     let loose = PicardParams {
         tolerance: params.tolerance.max(LOOSE_TOLERANCE),
@@ -401,12 +461,37 @@ pub fn grid_volume_wall(
         let last = pass == MAX_PASSES;
         if pass > 0 {
             let mut trial = pg.clone();
-            let done = remap_volume(&mut trial, &x, &targets, &mut goal) <= TOLERANCE;
+            if opts.orthogonal && tangent_goal.is_none() {
+                tangent_goal = Some(wall_normal::TangentGoals::new(&pg, &x, w));
+            }
+            let err = remap_volume(&mut trial, &x, &targets, &mut goal, tangent_goal.as_ref());
+            let angle = match &tangent_goal {
+                Some(tg) => wall_normal::shift_tangential(&pg, &mut trial, &x, w, tg),
+                None => 0.0,
+            };
+            let done = err <= TOLERANCE && angle <= ANGLE_TOLERANCE;
             if !done {
                 pg = trial;
             }
             if done || last {
                 // A final solve to the asked tolerance from the current grid.
+                let ctrl = Control3::from_algebraic(&pg);
+                let step = picard3d::solve(&mut x, &ctrl, solver, params, place, progress);
+                let fine = step.is_ok() && (!opts.orthogonal || folded(&x) == 0);
+                let (bpg, bx) = match (step, best.take()) {
+                    (Ok(step), _) if fine => {
+                        append(&mut info, step);
+                        break;
+                    }
+                    (Ok(step), None) => {
+                        append(&mut info, step);
+                        break;
+                    }
+                    (Err(e), None) => return Err(e),
+                    (_, Some((_, bpg, bx))) => (bpg, bx),
+                };
+                // The orthogonal passes folded the grid: back to the best fold-free one.
+                (pg, x) = (bpg, bx);
                 let ctrl = Control3::from_algebraic(&pg);
                 let step = picard3d::solve(&mut x, &ctrl, solver, params, place, progress)?;
                 append(&mut info, step);
@@ -423,8 +508,27 @@ pub fn grid_volume_wall(
                 ),
             ));
         }
-        let step = picard3d::solve(&mut x, &ctrl, solver, &loose, place, progress)?;
-        append(&mut info, step);
+        match picard3d::solve(&mut x, &ctrl, solver, &loose, place, progress) {
+            Ok(step) => append(&mut info, step),
+            Err(e) => match best.take() {
+                // A failed orthogonal pass: finish from the best fold-free grid.
+                Some((_, bpg, bx)) if opts.orthogonal => {
+                    (pg, x) = (bpg, bx);
+                    let ctrl = Control3::from_algebraic(&pg);
+                    let step = picard3d::solve(&mut x, &ctrl, solver, params, place, progress)?;
+                    append(&mut info, step);
+                    break;
+                }
+                _ => return Err(e),
+            },
+        }
+        if opts.orthogonal {
+            let q = super::quality3d::quality3d(&x);
+            let score = q.faces[w].orthogonality_max_deg;
+            if q.folded_cells == 0 && best.as_ref().is_none_or(|b| score < b.0) {
+                best = Some((score, pg.clone(), x.clone()));
+            }
+        }
     }
     Ok(VolumeResult {
         grid: x,

@@ -43,8 +43,10 @@ pub struct VolumeSpec {
     pub ni: usize,
     pub nj: usize,
     pub nk: usize,
-    /// Linear solver of each Picard step: "bicgstab" (default) or "direct" (small blocks).
-    #[serde(default = "bicgstab")]
+    /// Linear solver of each Picard step: "auto" (default: the 3D multigrid from
+    /// [`super::solver3d::AUTO_MULTIGRID_NODES`] nodes, else Bi-CGSTAB/ILU(0)), "multigrid",
+    /// "bicgstab" or "direct" (small blocks).
+    #[serde(default = "auto")]
     pub linear: String,
     /// Faces from edges: "tfi" (default; Coons patches) or "elliptic" (planar faces
     /// regridded by the Section 2 system).
@@ -55,6 +57,9 @@ pub struct VolumeSpec {
     /// A wall face ("F1" … "F6") whose first-cell heights are held to the bilinear
     /// interpolation of the first spacings of the four edges leaving it ([`super::wall`]).
     pub wall: Option<String>,
+    /// With `wall`: also make the grid lines leave the wall along its normal
+    /// ([`super::wall::wall_normal`]; default true).
+    pub wall_orthogonal: Option<bool>,
     #[serde(rename = "E1")]
     pub e1: Option<EdgeSpec>,
     #[serde(rename = "E2")]
@@ -81,8 +86,8 @@ pub struct VolumeSpec {
     pub e12: Option<EdgeSpec>,
 }
 
-fn bicgstab() -> String {
-    "bicgstab".into()
+fn auto() -> String {
+    "auto".into()
 }
 
 /// `faces = { file = "faces.x", orient = ["ab", …] }`: six surface blocks F1 … F6.

@@ -2,8 +2,8 @@
 //! the transfinite start grid, and the regridding of volume blocks of existing grids.
 
 use super::super::quality3d::{quality3d, QualityReport3};
-use super::super::wall::{check_kind, grid_volume_wall};
-use super::super::{by_name3, grid_volume, progress_enabled, transfinite, Faces};
+use super::super::wall::{check_kind, grid_volume_wall_with, WallOptions};
+use super::super::{for_block, grid_volume, progress_enabled, transfinite, Faces};
 use super::{volume_faces, volume_name, volume_place, wall_face};
 use crate::case::LoadedCase;
 use crate::domain::ControlKind;
@@ -50,7 +50,8 @@ pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, Vo
     let name = volume_name(case, k);
     let params = &spec.solver.picard;
     let faces = volume_faces(case, k, params)?;
-    let mut solver = by_name3(&v.linear).map_err(|m| Error::input(&place, m))?;
+    let mut solver =
+        for_block(&v.linear, [v.ni, v.nj, v.nk]).map_err(|m| Error::input(&place, m))?;
     let pb = progress_bar(&name, params.max_steps);
     let mut cb = |n: usize, s: &crate::poisson2d::PicardStep| {
         if let Some(pb) = &pb {
@@ -64,7 +65,18 @@ pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, Vo
     let r = match wall_face(v, &place)? {
         Some(w) => {
             check_kind(spec.solver.control, &place)?;
-            grid_volume_wall(&faces, w, solver.as_mut(), params, &place, &mut cb)?
+            let opts = WallOptions {
+                orthogonal: v
+                    .wall_orthogonal
+                    .unwrap_or(WallOptions::default().orthogonal),
+            };
+            grid_volume_wall_with(&faces, w, opts, solver.as_mut(), params, &place, &mut cb)?
+        }
+        None if v.wall_orthogonal.is_some() => {
+            return Err(Error::input(
+                &place,
+                "wall_orthogonal needs wall = \"F1\" … \"F6\"",
+            ))
         }
         None => grid_volume(
             &faces,
@@ -101,8 +113,8 @@ pub fn start_volume(case: &LoadedCase, k: usize) -> Result<(String, Block)> {
 
 /// Regrids a volume block of an existing grid keeping its boundary nodes bit for bit: the
 /// interior is the start grid if it is fold-free, else the transfinite one. `linear`:
-/// "direct" (faer LU, used only up to 40 000 interior nodes; larger blocks use Bi-CGSTAB),
-/// "bicgstab" or "multigrid" (Bi-CGSTAB until a 3D multigrid exists). Returns the grid, the
+/// "direct" (faer LU, used only up to 40 000 interior nodes; larger blocks use "auto"),
+/// "auto", "bicgstab" or "multigrid" ([`super::super::for_block`]). Returns the grid, the
 /// history, the start used and the solver's name.
 pub fn regrid_volume(
     g: &Grid3,
@@ -125,15 +137,10 @@ pub fn regrid_volume(
     let inner = (d[0] - 2) * (d[1] - 2) * (d[2] - 2);
     let name = match linear {
         "direct" if inner <= 40_000 => "direct",
-        "direct" | "multigrid" | "bicgstab" => "bicgstab",
-        o => {
-            return Err(Error::input(
-                place,
-                format!("linear solver '{o}': expected direct, bicgstab or multigrid"),
-            ))
-        }
+        "direct" => "auto",
+        o => o,
     };
-    let mut solver = by_name3(name).map_err(|m| Error::input(place, m))?;
+    let mut solver = for_block(name, d).map_err(|m| Error::input(place, m))?;
     let valid = !quality3d(g).is_folded();
     let start = valid.then(|| g.clone());
     let pb = progress_bar(place, params.max_steps);

@@ -107,6 +107,68 @@ fn eval_cell(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> [f64; 4] {
     [jmin, smin, skew, emax / emin]
 }
 
+/// Smallest block-edge dihedral (degrees) counted as flat: [`flat_edge_cell`].
+pub const FLAT_EDGE_DEG: f64 = 179.0;
+
+/// True if every non-positive corner Jacobian of cell (i, j, k) (relative to `sign`) sits at a
+/// node on a block edge where the two block faces meeting there are flat: dihedral ≥
+/// [`FLAT_EDGE_DEG`], measured at that node between the cell edges leaving it in the two faces,
+/// projected normal to the block edge. Such a corner has three (nearly) coplanar edges by the
+/// block's topology (the 180° edge where two faces of a C–O block share one plane), not by a
+/// fold; its scaled Jacobian is at most sin 1° in size. False if no corner is non-positive, or
+/// a NaN, a zero-length edge or any other non-positive corner is present.
+pub fn flat_edge_cell(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> bool {
+    let dims = g.dims();
+    let x: [V; 8] = std::array::from_fn(|c| g.point(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)));
+    let mut any = false;
+    for (c, &xc) in x.iter().enumerate() {
+        let raw: [V; 3] = std::array::from_fn(|a| sub(x[c ^ (1 << a)], xc));
+        let e: [V; 3] = std::array::from_fn(|a| {
+            if (c >> a) & 1 == 1 {
+                [-raw[a][0], -raw[a][1], -raw[a][2]]
+            } else {
+                raw[a]
+            }
+        });
+        let jac = sign * dot(e[0], cross(e[1], e[2]));
+        if jac > 0.0 {
+            continue;
+        }
+        if jac.is_nan() {
+            return false;
+        }
+        any = true;
+        let n = [i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)];
+        let ext: [bool; 3] = std::array::from_fn(|a| n[a] == 0 || n[a] + 1 == dims[a]);
+        // Along a block edge of axis d the two other axes are at their ends; the cell edges
+        // along them lie in the two faces that meet at the block edge.
+        let flat = (0..3).any(|d| {
+            let (a, b) = ((d + 1) % 3, (d + 2) % 3);
+            if !(ext[a] && ext[b]) {
+                return false;
+            }
+            let t = raw[d];
+            let tt = dot(t, t);
+            if tt <= 0.0 {
+                return false;
+            }
+            let perp = |v: V| {
+                let s = dot(v, t) / tt;
+                [v[0] - s * t[0], v[1] - s * t[1], v[2] - s * t[2]]
+            };
+            let (u, w) = (perp(raw[a]), perp(raw[b]));
+            if norm(u) <= 0.0 || norm(w) <= 0.0 {
+                return false;
+            }
+            angle(u, w) >= FLAT_EDGE_DEG
+        });
+        if !flat {
+            return false;
+        }
+    }
+    any
+}
+
 /// Majority sign of the corner Jacobians (+1 right-handed, −1 left-handed).
 fn orientation(g: &Grid3) -> f64 {
     let [ni, nj, nk] = g.dims();
@@ -140,6 +202,10 @@ struct Acc {
     aspect: f64,
     folded: usize,
     first: Vec<[usize; 3]>,
+    flat: usize,
+    first_flat: Vec<[usize; 3]>,
+    /// Smallest scaled Jacobian over the cells that are not flat-edge cells.
+    smin_regular: f64,
 }
 
 impl Acc {
@@ -153,6 +219,9 @@ impl Acc {
             aspect: f64::NEG_INFINITY,
             folded: 0,
             first: vec![],
+            flat: 0,
+            first_flat: vec![],
+            smin_regular: f64::INFINITY,
         }
     }
     fn merge(mut self, b: Acc) -> Acc {
@@ -165,6 +234,10 @@ impl Acc {
         self.folded += b.folded;
         let room = MAX_FIRST_FOLDED - self.first.len();
         self.first.extend(b.first.into_iter().take(room));
+        self.flat += b.flat;
+        let room = MAX_FIRST_FOLDED - self.first_flat.len();
+        self.first_flat.extend(b.first_flat.into_iter().take(room));
+        self.smin_regular = nmin(self.smin_regular, b.smin_regular);
         self
     }
 }
@@ -292,6 +365,9 @@ pub fn quality3d(g: &Grid3) -> QualityReport3 {
         scaled_jacobian_min: nan,
         folded_cells: 0,
         first_folded: vec![],
+        flat_edge_cells: 0,
+        first_flat_edge: vec![],
+        scaled_jacobian_min_regular: nan,
         skewness_max: nan,
         skewness_mean: nan,
         faces: vec![],
@@ -322,7 +398,15 @@ pub fn quality3d(g: &Grid3) -> QualityReport3 {
                     a.skew_max = nmax(a.skew_max, sk);
                     a.skew_sum += sk;
                     a.aspect = nmax(a.aspect, ar);
-                    if jac <= 0.0 || jac.is_nan() {
+                    if jac > 0.0 {
+                        a.smin_regular = nmin(a.smin_regular, s);
+                    } else if flat_edge_cell(g, i, j, k, sign) {
+                        a.flat += 1;
+                        if a.first_flat.len() < MAX_FIRST_FOLDED {
+                            a.first_flat.push([i, j, k]);
+                        }
+                    } else {
+                        a.smin_regular = nmin(a.smin_regular, s);
                         a.folded += 1;
                         if a.first.len() < MAX_FIRST_FOLDED {
                             a.first.push([i, j, k]);
@@ -341,6 +425,9 @@ pub fn quality3d(g: &Grid3) -> QualityReport3 {
     rep.scaled_jacobian_min = acc.smin;
     rep.folded_cells = acc.folded;
     rep.first_folded = acc.first;
+    rep.flat_edge_cells = acc.flat;
+    rep.first_flat_edge = acc.first_flat;
+    rep.scaled_jacobian_min_regular = acc.smin_regular;
     rep.skewness_max = acc.skew_max;
     rep.skewness_mean = acc.skew_sum / cells as f64;
     rep.aspect_ratio_max = acc.aspect;

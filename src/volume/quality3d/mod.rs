@@ -12,7 +12,12 @@
 //!   (1: orthogonal corner).
 //! - Orientation: the sign held by the majority of corner Jacobians; Jacobians are reported
 //!   relative to it (a left-handed grid is valid). A cell is folded iff a corner Jacobian is
-//!   ≤ 0 or NaN.
+//!   ≤ 0 or NaN, unless it is a flat-edge cell.
+//! - Flat-edge cell ([`metrics::flat_edge_cell`]): every non-positive corner sits on a block
+//!   edge where the two block faces meeting there are coplanar, dihedral ≥ 179° (e.g. edge E7
+//!   of a C–O block around a wing tip, where the wing plane ahead of the leading edge meets the
+//!   wing plane beyond the tip). Its corner there has three coplanar edges by topology, not by a
+//!   fold; such cells are counted apart and do not make the grid folded.
 //! - Skewness: the largest equiangular skewness max[(θmax − 90°)/90°, (90° − θmin)/90°] of the
 //!   six quadrilateral faces of a cell (corner angles between the face's edges in R³).
 //! - Orthogonality at a face: at every face node that is not on the face's rim, the angle
@@ -85,6 +90,14 @@ pub struct QualityReport3 {
     pub folded_cells: usize,
     /// Lower corner nodes (i, j, k) of the first folded cells, in index order.
     pub first_folded: Vec<[usize; 3]>,
+    /// Cells degenerate at a flat block edge (180° dihedral, by topology; module docs): not
+    /// counted in `folded_cells`.
+    pub flat_edge_cells: usize,
+    /// Lower corner nodes of the first flat-edge cells, in index order.
+    pub first_flat_edge: Vec<[usize; 3]>,
+    /// Smallest scaled Jacobian over the cells that are not flat-edge cells.
+    #[serde(serialize_with = "jf64")]
+    pub scaled_jacobian_min_regular: f64,
     #[serde(serialize_with = "jf64")]
     pub skewness_max: f64,
     #[serde(serialize_with = "jf64")]
@@ -176,6 +189,22 @@ impl fmt::Display for QualityReport3 {
             }
         }
         writeln!(f, "{folded}")?;
+        if self.flat_edge_cells > 0 {
+            let mut flat = format!(
+                "  {:<22} {:>15}   (180° block edge, by topology; scaled jacobian min {} off \
+                 them)   first:",
+                "flat-edge cells",
+                self.flat_edge_cells,
+                num(self.scaled_jacobian_min_regular)
+            );
+            for [i, j, k] in &self.first_flat_edge {
+                flat += &format!(" ({i},{j},{k})");
+            }
+            if self.flat_edge_cells > self.first_flat_edge.len() {
+                flat += " …";
+            }
+            writeln!(f, "{flat}")?;
+        }
         writeln!(
             f,
             "{}",
@@ -309,6 +338,54 @@ mod tests {
         assert_eq!(q.faces[0].nodes, 0);
         let s = q.to_string();
         assert!(s.contains("folded cells") && s.contains("F6"), "{s}");
+    }
+
+    /// A block whose faces i = 0 and k = last lie in the plane z = 0 on either side of their
+    /// shared edge (the C–O tip edge): (x, z) = (a² − b², 2ab), a = i, b = last − k (the map
+    /// w = ζ² opens the quadrant to the half-plane), y = j.
+    fn flat_edge_block() -> Grid3 {
+        let (n, l) = (4, 3);
+        Grid3::from_fn(n, 3, l + 1, |i, j, k| {
+            let (a, b) = (i as f64, (l - k) as f64);
+            [a * a - b * b, j as f64, 2.0 * a * b]
+        })
+    }
+
+    #[test]
+    fn cells_at_a_flat_block_edge_are_counted_apart_from_folded_ones() {
+        let g = flat_edge_block();
+        let q = quality3d(&g);
+        // The two cells along the edge (i = 0, k = 2) have a corner with coplanar edges.
+        assert_eq!((q.folded_cells, q.flat_edge_cells), (0, 2), "{q}");
+        assert_eq!(q.first_flat_edge, vec![[0, 0, 2], [0, 1, 2]]);
+        assert_eq!(q.scaled_jacobian_min, 0.0);
+        assert!(q.scaled_jacobian_min_regular > 0.1, "{q}");
+        assert!(!q.is_folded() && q.to_string().contains("flat-edge cells"));
+        // A real fold in such a cell (its interior node pushed through the plane) is folded.
+        let mut f = g.clone();
+        let p = f.point(1, 1, 2);
+        f.set(1, 1, 2, [p[0], p[1], -0.5]);
+        let q = quality3d(&f);
+        assert!(q.is_folded() && q.first_folded.contains(&[0, 0, 2]), "{q}");
+        // A zero-length edge on the block edge is a degenerate cell, not a flat edge.
+        let mut z = g.clone();
+        z.set(0, 1, 3, z.point(0, 0, 3));
+        assert!(quality3d(&z).is_folded());
+        // Both faces tilted down by 0.4° (a dihedral of 180.8° inside the block) still count
+        // as flat; by 1° each (182°) the cells are folded.
+        let tilt = 0.4f64.to_radians().tan();
+        let bent = Grid3::from_fn(4, 3, 4, |i, j, k| {
+            let p = g.point(i, j, k);
+            [p[0], p[1], p[2] - tilt * p[0].abs()]
+        });
+        let q = quality3d(&bent);
+        assert_eq!((q.folded_cells, q.flat_edge_cells), (0, 2), "{q}");
+        let bent = Grid3::from_fn(4, 3, 4, |i, j, k| {
+            let p = g.point(i, j, k);
+            [p[0], p[1], p[2] - 2.5 * tilt * p[0].abs()]
+        });
+        let q = quality3d(&bent);
+        assert_eq!((q.folded_cells, q.flat_edge_cells), (2, 0), "{q}");
     }
 
     #[test]

@@ -1,0 +1,266 @@
+//! The C–O wing block of `examples/wing_m6_co.toml` (issue: volume grids, the wing example):
+//! the block above the upper surface of the ONERA M6 wing that wraps around a rounded tip cap,
+//! faces from `examples/common/wing_co_shape.rs` (shipped as `data/wing_m6_co_faces.x`).
+//!
+//! Fold-free here means: no folded cell under the 3D quality report's rule, where the cells
+//! along the flat block edge E7 (the wing plane ahead of the leading edge, F1, meets the wing
+//! plane beyond the tip, F6, at 180°, inherent to the C–O topology) are counted apart as
+//! flat-edge cells: every non-positive corner of such a cell sits on a block edge whose two
+//! faces are coplanar within 1° (`ellipgrid::volume::quality3d::metrics::flat_edge_cell`).
+//! The tests require those to be exactly the nj − 1 cells along E7 and nothing else.
+
+mod common;
+use common::*;
+
+#[path = "../examples/common/wing_co_shape.rs"]
+mod shape;
+
+use ellipgrid::case::LoadedCase;
+use ellipgrid::io::plot3d::{read_plot3d, write_plot3d, Plot3dFormat};
+use ellipgrid::io::Block;
+use ellipgrid::volume::case3d::generate_volume;
+use ellipgrid::Grid3;
+use std::fs;
+use std::path::Path;
+
+/// Reduced size of the tests (the shipped case is 65 × 49 × 33).
+const SMALL: [usize; 3] = [41, 33, 17];
+
+/// Writes the faces at `dims` and a copy of the shipped case reading them into `dir`; returns
+/// the case path.
+fn small_case(dir: &Path, dims: [usize; 3]) -> std::path::PathBuf {
+    let [ni, nj, nk] = dims;
+    let blocks: Vec<Block> = shape::faces(ni, nj, nk)
+        .into_iter()
+        .map(Block::Surface)
+        .collect();
+    write_plot3d(
+        &dir.join("faces.x"),
+        &blocks,
+        &Plot3dFormat::default(),
+        None,
+    )
+    .unwrap();
+    let mut text = fs::read_to_string(root().join("examples/wing_m6_co.toml")).unwrap();
+    for (key, from, to) in [("ni", 65, ni), ("nj", 49, nj), ("nk", 33, nk)] {
+        let (a, b) = (format!("{key} = {from}"), format!("{key} = {to}"));
+        assert!(text.contains(&a), "{a}");
+        text = text.replace(&a, &b);
+    }
+    let shipped = "../data/wing_m6_co_faces.x";
+    assert!(text.contains(shipped));
+    text = text.replace(shipped, "faces.x");
+    let path = dir.join("wing_co.toml");
+    fs::write(&path, text).unwrap();
+    path
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The grid of the case at reduced size, with its report.
+fn small_grid() -> (Grid3, ellipgrid::volume::case3d::VolumeReport) {
+    small_grid_with("")
+}
+
+/// As [`small_grid`], with `extra` keys added to the `[[volume]]` table.
+fn small_grid_with(extra: &str) -> (Grid3, ellipgrid::volume::case3d::VolumeReport) {
+    let d = tempfile::tempdir().unwrap();
+    let path = small_case(d.path(), SMALL);
+    let text = fs::read_to_string(&path).unwrap();
+    let wall = "\nwall = \"F3\"\n";
+    let at = text.find(wall).expect("the wall key") + wall.len();
+    fs::write(&path, format!("{}{extra}\n{}", &text[..at], &text[at..])).unwrap();
+    let case = LoadedCase::read(&path).unwrap();
+    let (_, block, rep) = generate_volume(&case, 0).unwrap();
+    let Block::Volume(g) = block else {
+        panic!("not a volume block")
+    };
+    (g, rep)
+}
+
+/// Fold-free (flat-edge cells exactly the nj − 1 cells along E7), and the first-cell height at
+/// every wall node (F3, j = 0, the cap and the face edges included) within 20 % of the
+/// prescribed 1e-5 local chord at the leading edge, 2e-5 at the trailing edge, linear in x/c;
+/// the local chord of a node is the planform chord at its y (the tip chord at the tip edge).
+#[test]
+fn co_block_is_fold_free_and_holds_the_wall_spacing() {
+    let (g, rep) = small_grid();
+    let q = &rep.quality;
+    assert!(rep.picard.converged, "{:?}", rep.picard);
+    assert_eq!(g.dims(), SMALL);
+    let [ni, nj, nk] = SMALL;
+    assert_eq!(q.folded_cells, 0, "{q}");
+    assert_eq!(q.flat_edge_cells, nj - 1, "{q}");
+    assert!(
+        q.first_flat_edge
+            .iter()
+            .all(|c| c[0] == 0 && c[2] == nk - 2),
+        "{q}"
+    );
+    assert!(q.scaled_jacobian_min_regular > 0.0, "{q}");
+    let mut worst: f64 = 0.0;
+    for k in 0..nk {
+        for i in 0..ni {
+            let (p0, p1) = (g.point(i, 0, k), g.point(i, 1, k));
+            let r = dist(p0, p1) / shape::target_height(p0);
+            assert!(
+                (0.8..=1.2).contains(&r),
+                "node ({i}, 0, {k}) at {p0:?}: h / target = {r:.3}"
+            );
+            worst = worst.max((r - 1.0).abs());
+        }
+    }
+    eprintln!(
+        "wing C-O {SMALL:?}: {} Picard steps, {:.2} s, worst wall height error {:.2} %, \
+         min scaled Jacobian off E7 {:.4}",
+        rep.picard.steps,
+        rep.seconds,
+        100.0 * worst,
+        q.scaled_jacobian_min_regular
+    );
+}
+
+/// Near-wall orthogonality (`wall_orthogonal`, on by default): at every wall node off the
+/// wall face's rim the first off-wall grid line leaves within 2° of the wall normal (measured
+/// 0.12°, mean 0.00°) and the wall-normal distance of the first off-wall node is within 20 % of
+/// the prescribed height (measured 0.999 … 1.009); without it up to 78°, mean 38°, and distances
+/// down to 0.20 of the target. `WING_CO_EXTRA` adds keys to the case (`wall_orthogonal = false`
+/// prints those numbers and fails).
+#[test]
+fn co_block_lines_leave_the_wall_along_its_normal() {
+    let extra = std::env::var("WING_CO_EXTRA").unwrap_or_default();
+    let (g, rep) = small_grid_with(&extra);
+    let q = &rep.quality;
+    let [ni, nj, nk] = SMALL;
+    let w = ellipgrid::volume::wall::parse_face("F3").unwrap();
+    let hn = ellipgrid::volume::wall::wall_normal::normal_heights(&g, w);
+    let (mut lo, mut hi, mut sum) = (f64::INFINITY, 0.0f64, 0.0);
+    let mut worst = [0usize; 2];
+    for k in 1..nk - 1 {
+        for i in 1..ni - 1 {
+            let r = hn[i + ni * k] / shape::target_height(g.point(i, 0, k));
+            if r < lo {
+                lo = r;
+                worst = [i, k];
+            }
+            hi = hi.max(r);
+            sum += r;
+        }
+    }
+    let f = &q.faces[w];
+    eprintln!(
+        "wing C-O {SMALL:?} [{extra}]: angle from the wall normal max {:.3}° mean {:.3}°, \
+         normal distance / target {lo:.3} (at {worst:?}) .. {hi:.3} (mean {:.3}), folded {}, \
+         flat-edge {}, {} Picard steps, {:.2} s, min scaled Jacobian off E7 {:.4}",
+        f.orthogonality_max_deg,
+        f.orthogonality_mean_deg,
+        sum / ((ni - 2) * (nk - 2)) as f64,
+        q.folded_cells,
+        q.flat_edge_cells,
+        rep.picard.steps,
+        rep.seconds,
+        q.scaled_jacobian_min_regular
+    );
+    assert_eq!(q.folded_cells, 0, "{q}");
+    assert_eq!(q.flat_edge_cells, nj - 1, "{q}");
+    assert!(
+        lo >= 0.8 && hi <= 1.2,
+        "normal distance / target {lo} .. {hi}"
+    );
+    assert!(f.orthogonality_max_deg < 2.0, "{q}");
+    assert!(f.orthogonality_mean_deg < 0.2, "{q}");
+}
+
+/// The block wraps the tip: the wall's last k-line is the tip edge (y = b, z = 0, from the tip
+/// leading edge to the tip trailing edge), the line before it is on the cap (inboard of and
+/// above it), the face k = last lies in the wing plane beyond the tip, and the face i = 0 lies
+/// in the wing plane ahead of the leading edge (so F1 and F6 meet at 180° along E7).
+#[test]
+fn co_block_wraps_the_tip() {
+    let [ni, nj, nk] = SMALL;
+    let g = shape::algebraic_block(ni, nj, nk);
+    let b = shape::SEMI_SPAN;
+    let (xl, c) = (shape::x_le(b), shape::chord(b));
+    let tip: Vec<[f64; 3]> = (0..ni).map(|i| g.point(i, 0, nk - 1)).collect();
+    assert!(tip.iter().all(|p| p[1] == b && p[2] == 0.0));
+    assert!((tip[0][0] - xl).abs() < 1e-12 && (tip[ni - 1][0] - xl - c).abs() < 1e-9);
+    for i in 1..ni - 1 {
+        let p = g.point(i, 0, nk - 2);
+        assert!(
+            p[1] < b && p[2] > 0.0,
+            "cap node ({i}, 0, {}) {p:?}",
+            nk - 2
+        );
+    }
+    for j in 0..nj {
+        for i in 0..ni {
+            let p = g.point(i, j, nk - 1);
+            assert!(p[2] == 0.0 && p[1] >= b, "F6 node ({i}, {j}) {p:?}");
+        }
+        for k in 0..nk {
+            let p = g.point(0, j, k);
+            assert!(p[2] == 0.0 && p[0] <= shape::x_le(p[1]) + 1e-12, "F1 {p:?}");
+        }
+    }
+    // The grid lines leaving the wall turn from up (root) to outboard (tip edge).
+    let mid = ni / 2;
+    let up = |k: usize| {
+        let (p, q) = (g.point(mid, 0, k), g.point(mid, 1, k));
+        [q[0] - p[0], q[1] - p[1], q[2] - p[2]]
+    };
+    let (r, t) = (up(0), up(nk - 1));
+    assert!(r[2] > 0.9 * dist(r, [0.0; 3]) && t[1] > 0.9 * dist(t, [0.0; 3]));
+}
+
+/// The shipped faces file is the shape's faces at 65 × 49 × 33 (`make_wing_co` wrote it).
+#[test]
+fn shipped_faces_are_the_shape() {
+    let file = read_plot3d(&root().join("data/wing_m6_co_faces.x")).unwrap();
+    let want = shape::faces(65, 49, 33);
+    assert_eq!(file.blocks.len(), 6);
+    for (b, w) in file.blocks.iter().zip(&want) {
+        let Block::Surface(s) = b else {
+            panic!("not a surface block")
+        };
+        assert_eq!((s.ni(), s.nj()), (w.ni(), w.nj()));
+        for c in 0..3 {
+            for (u, v) in s.coord(c).iter().zip(w.coord(c)) {
+                assert!((u - v).abs() < 1e-12, "{u} vs {v}");
+            }
+        }
+    }
+}
+
+/// `ellipgrid run` on the case at reduced size (a temporary copy reading reduced faces):
+/// exit 0, a readable Plot3D volume grid of that size, the flat edge in the JSON report.
+#[test]
+fn cli_runs_the_co_case() {
+    let d = tempfile::tempdir().unwrap();
+    small_case(d.path(), SMALL);
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "run",
+            "wing_co.toml",
+            "-o",
+            "out.x",
+            "--report",
+            "r.json",
+            "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let f = read_plot3d(&d.path().join("out.x")).unwrap();
+    assert_eq!(f.blocks.len(), 1);
+    let Block::Volume(g) = &f.blocks[0] else {
+        panic!("not a volume block")
+    };
+    assert_eq!(g.dims(), SMALL);
+    let r: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
+    let q = &r["volumes"][0]["quality"];
+    assert_eq!(q["folded_cells"], 0);
+    assert_eq!(q["flat_edge_cells"], SMALL[1] - 1);
+}
