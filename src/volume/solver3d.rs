@@ -56,8 +56,9 @@ pub fn by_name3(name: &str) -> Result<Box<dyn LinearSolver3>, String> {
 
 /// Blocks of at least this many nodes use the 3D multigrid under "auto" (the default of
 /// case files), smaller ones Bi-CGSTAB/ILU(0). Measured on the warped box of
-/// `examples/bench_volume.rs` (whole nested solve, 2 cores): 33³ Bi-CGSTAB 0.30 s against
-/// multigrid 0.51 s; 65³ multigrid 2.6 s against 3.5 s; 129³ multigrid 34–42 s against 84–86 s.
+/// `examples/bench_volume.rs` (whole nested solve, idle 2-core machine): 33³ Bi-CGSTAB 0.21 s
+/// against multigrid 0.44 s; 65³ multigrid 2.44 s against 3.04 s; 129³ multigrid 21.2 s
+/// against 47.8 s.
 pub const AUTO_MULTIGRID_NODES: usize = 200_000;
 
 /// The solver called `name` for a block of `dims` nodes: as [`by_name3`], plus "auto" —
