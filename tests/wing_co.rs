@@ -234,7 +234,8 @@ fn shipped_faces_are_the_shape() {
 }
 
 /// `ellipgrid run` on the case at reduced size (a temporary copy reading reduced faces):
-/// exit 0, a readable Plot3D volume grid of that size, the flat edge in the JSON report.
+/// exit 0, a readable Plot3D volume grid of that size, the flat edge and the wall figure in the
+/// JSON report.
 #[test]
 fn cli_runs_the_co_case() {
     let d = tempfile::tempdir().unwrap();
@@ -263,4 +264,10 @@ fn cli_runs_the_co_case() {
     let q = &r["volumes"][0]["quality"];
     assert_eq!(q["folded_cells"], 0);
     assert_eq!(q["flat_edge_cells"], SMALL[1] - 1);
+    // the wall figure of the report: lines along the normal, the prescribed normal spacing
+    let w = &r["volumes"][0]["wall"];
+    assert_eq!(w["face"], "F3");
+    let f = |k: &str| w[k].as_f64().unwrap();
+    assert!(f("angle_max_deg") < 2.0, "{w}");
+    assert!(f("ratio_min") > 0.8 && f("ratio_max") < 1.2, "{w}");
 }

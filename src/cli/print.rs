@@ -49,6 +49,13 @@ pub fn volume(v: &ellipgrid::volume::case3d::VolumeReport) {
     );
     history(&v.picard);
     println!("{}", v.quality);
+    if let Some(w) = &v.wall {
+        println!(
+            "  wall {}: first grid lines {:.3}° (mean {:.3}°) from the normal; first node at \
+             {:.3} … {:.3} of the prescribed wall-normal spacing ({} nodes off the rim)",
+            w.face, w.angle_max_deg, w.angle_mean_deg, w.ratio_min, w.ratio_max, w.nodes
+        );
+    }
     if !v.picard.converged {
         eprintln!(
             "warning: volume '{}': Picard iteration stopped after {} steps (tolerance {:.1e})",

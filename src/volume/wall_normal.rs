@@ -294,9 +294,12 @@ pub fn shift_tangential(
     err
 }
 
-/// Near-wall figure of a grid at wall face `w` ([`wall_figure`]).
-#[derive(Clone, Debug, PartialEq)]
+/// Near-wall figure of a grid at wall face `w` ([`wall_figure`]): in the run report of a block
+/// with `wall = "F…"`.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct WallFigure {
+    /// The wall face ("F1" … "F6").
+    pub face: String,
     /// Wall nodes measured (those off the wall face's rim).
     pub nodes: usize,
     /// Largest and mean angle between the first off-wall grid line and the wall normal, degrees
@@ -343,6 +346,7 @@ pub fn wall_figure(g: &Grid3, w: usize, targets: &[f64]) -> WallFigure {
         }
     }
     WallFigure {
+        face: super::super::faces::FACE_NAMES[w].to_string(),
         nodes: f.nodes,
         angle_max_deg: f.orthogonality_max_deg,
         angle_mean_deg: f.orthogonality_mean_deg,

@@ -2,7 +2,8 @@
 //! the transfinite start grid, and the regridding of volume blocks of existing grids.
 
 use super::super::quality3d::{quality3d, QualityReport3};
-use super::super::wall::{check_kind, grid_volume_wall_with, WallOptions};
+use super::super::wall::wall_normal::{wall_figure, WallFigure};
+use super::super::wall::{check_kind, grid_volume_wall_with, wall_targets, WallOptions};
 use super::super::{for_block, grid_volume, progress_enabled, transfinite, Faces};
 use super::{volume_faces, volume_name, volume_place, wall_face};
 use crate::case::LoadedCase;
@@ -24,6 +25,10 @@ pub struct VolumeReport {
     pub seconds: f64,
     pub picard: PicardInfo,
     pub quality: QualityReport3,
+    /// With `wall`: the angles of the first grid lines to the wall normal and the wall-normal
+    /// distance of the first off-wall nodes over the prescribed spacing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall: Option<WallFigure>,
 }
 
 /// A terminal progress bar for a Picard solve, if enabled and stderr is a terminal.
@@ -62,7 +67,8 @@ pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, Vo
             ));
         }
     };
-    let r = match wall_face(v, &place)? {
+    let wall = wall_face(v, &place)?;
+    let r = match wall {
         Some(w) => {
             check_kind(spec.solver.control, &place)?;
             let opts = WallOptions {
@@ -92,6 +98,10 @@ pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, Vo
         pb.finish_and_clear();
     }
     let q = quality3d(&r.grid);
+    let wall = match wall {
+        Some(w) => Some(wall_figure(&r.grid, w, &wall_targets(&faces, w, &place)?)),
+        None => None,
+    };
     let [ni, nj, nk] = r.grid.dims();
     let rep = VolumeReport {
         name: name.clone(),
@@ -101,6 +111,7 @@ pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, Vo
         seconds: t0.elapsed().as_secs_f64(),
         picard: r.picard,
         quality: q,
+        wall,
     };
     Ok((name, Block::Volume(r.grid), rep))
 }
