@@ -214,8 +214,8 @@ impl TangentGoals {
 /// One tangential pass (module docs): shifts the tangential parameters of `trial` (S of
 /// `old`, its v already remapped) so that the nodes of the interior wall columns of face `w`
 /// in grid `x` (solved with `old`) move towards their goals. Returns the largest
-/// |t − t*| / |x_j − x₀| before the pass over the shifted nodes (the sine of the angle still
-/// to remove).
+/// |t − t*| / |x_j − x₀| before the pass over the first off-wall nodes (j = 1: the sine of the
+/// angle at the wall still to remove).
 pub fn shift_tangential(
     old: &ParamGrid3,
     trial: &mut ParamGrid3,
@@ -231,7 +231,7 @@ pub fn shift_tangential(
     let mut err = 0.0f64;
     let mut shifts: Vec<(usize, f64, f64)> = Vec::new();
     let pt = |n: [usize; 3]| x.point(n[0], n[1], n[2]);
-    for_nodes(x, w, |slot, _, _, n, r, nrm| {
+    for_nodes(x, w, |slot, _, j, n, r, nrm| {
         let (t0, psi) = (goals.t0[slot], goals.weight[slot]);
         let goal = t0.map(|c| c * (1.0 - psi));
         let Some(nv) = nrm else { return };
@@ -239,7 +239,7 @@ pub fn shift_tangential(
             return;
         }
         let len = norm(r);
-        if len > 0.0 {
+        if len > 0.0 && j == 1 {
             err = err.max(norm(sub(goal, tangential(r, nv))) / len);
         }
         let p = flat(n, dims);
