@@ -2,6 +2,7 @@
 //! solver and the black-box multigrid are interchangeable.
 
 pub mod direct;
+pub mod krylov;
 
 use crate::multigrid::{MgParams, Multigrid};
 use crate::stencil::Stencil9;

@@ -2,7 +2,7 @@
 //!
 //! [`LinearSolver3`] mirrors the 2D [`crate::linsolve::LinearSolver`]: `setup` once per
 //! operator (once per Picard step), then one `solve` per coordinate, in parallel. Two solvers:
-//! - [`BiCgStabIlu`] ("bicgstab", the default for volume blocks): Bi-CGSTAB (van der Vorst
+//! - [`BiCgStabIlu`] ("bicgstab", the default below 200 000 nodes): Bi-CGSTAB (van der Vorst
 //!   1992, the Krylov half of the paper's THREED) right-preconditioned by an incomplete LU
 //!   factorization without fill, ILU(0), in the natural (i fastest) ordering. ILU(0) of a
 //!   19-point operator is exact for purely one-dimensional coupling along any of the three
@@ -17,7 +17,6 @@ use super::stencil19::{Stencil19, C, OFFSETS};
 use crate::linsolve::direct::SparseLu;
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
 use faer::sparse::Triplet;
-use rayon::prelude::*;
 
 /// A solver for 19-point structured systems `A x = b`.
 ///
@@ -219,10 +218,6 @@ impl BiCgStabIlu {
     }
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.par_iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
 impl LinearSolver3 for BiCgStabIlu {
     fn setup(&mut self, a: &Stencil19) -> Result<(), SolveError> {
         let [nx, ny, _] = a.dims();
@@ -262,67 +257,13 @@ impl LinearSolver3 for BiCgStabIlu {
         let a = self.a.as_ref().ok_or(SolveError::NotSetUp)?;
         let n = a.len();
         assert_eq!((b.len(), x.len()), (n, n));
-        let mut r = vec![0.0; n];
-        a.residual(b, x, &mut r);
-        let r0 = dot(&r, &r).sqrt();
-        let mut info = SolveInfo::default();
-        if r0 == 0.0 || !r0.is_finite() {
-            info.converged = r0 == 0.0;
-            if !r0.is_finite() {
-                return Err(SolveError::Diverged(f64::NAN));
-            }
-            return Ok(info);
-        }
-        let mut rh = r.clone();
-        let (mut p, mut v) = (vec![0.0; n], vec![0.0; n]);
-        let (mut ph, mut sh, mut t) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let (mut rho, mut alpha, mut omega) = (1.0, 1.0, 1.0);
-        for it in 1..=ctl.max_iter {
-            let rho_new = dot(&rh, &r);
-            if rho_new == 0.0 || omega == 0.0 {
-                // Breakdown: restart the shadow residual.
-                rh.copy_from_slice(&r);
-                p.fill(0.0);
-                v.fill(0.0);
-                (rho, alpha, omega) = (1.0, 1.0, 1.0);
-                continue;
-            }
-            let beta = (rho_new / rho) * (alpha / omega);
-            rho = rho_new;
-            p.par_iter_mut()
-                .zip(&r)
-                .zip(&v)
-                .for_each(|((pv, rv), vv)| *pv = rv + beta * (*pv - omega * vv));
-            self.precondition(a, &p, &mut ph);
-            a.apply(&ph, &mut v);
-            alpha = rho / dot(&rh, &v);
-            // s overwrites r.
-            r.par_iter_mut()
-                .zip(&v)
-                .for_each(|(rv, vv)| *rv -= alpha * vv);
-            self.precondition(a, &r, &mut sh);
-            a.apply(&sh, &mut t);
-            let tt = dot(&t, &t);
-            omega = if tt > 0.0 { dot(&t, &r) / tt } else { 0.0 };
-            x.par_iter_mut()
-                .zip(&ph)
-                .zip(&sh)
-                .for_each(|((xv, pv), sv)| *xv += alpha * pv + omega * sv);
-            r.par_iter_mut()
-                .zip(&t)
-                .for_each(|(rv, tv)| *rv -= omega * tv);
-            let rel = dot(&r, &r).sqrt() / r0;
-            info.iterations = it;
-            info.residual_history.push(rel);
-            if !rel.is_finite() || rel > 1e8 {
-                return Err(SolveError::Diverged(rel));
-            }
-            if rel <= ctl.rel_tol {
-                info.converged = true;
-                break;
-            }
-        }
-        Ok(info)
+        crate::linsolve::krylov::bicgstab(
+            &mut |v, out| a.apply(v, out),
+            &mut |v, out| self.precondition(a, v, out),
+            b,
+            x,
+            ctl,
+        )
     }
 
     fn name(&self) -> &'static str {

@@ -6,7 +6,8 @@
 
 use super::coarse::CoarseLu;
 use super::level::Level;
-use super::{krylov, transfer, Cycle3, Mg3Params, Smoother3};
+use super::{transfer, Cycle3, Mg3Params, Smoother3};
+use crate::linsolve::krylov::DIVERGED;
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
 
 #[derive(Debug)]
@@ -167,7 +168,7 @@ pub(super) fn solve_cycles(
         let v = &mut lv[0];
         let rel = l0.residual(&v.x, &v.b, &mut v.r).sqrt() / r0;
         info.residual_history.push(rel);
-        if rel.is_nan() || rel > krylov::DIVERGED {
+        if rel.is_nan() || rel > DIVERGED {
             return Err(SolveError::Diverged(rel));
         }
         if rel <= ctl.rel_tol {

@@ -9,7 +9,7 @@
 //! | coarse operators | `rap.rs` | Galerkin `R A P`, 27-point on every coarse level |
 //! | coarsest | `coarse.rs` | dense LU (faer sparse LU when large) |
 //! | cycles | `cycle.rs` | V(1,1) (default) or F cycles, workspace, plain-cycle solve |
-//! | acceleration | `krylov.rs` | Bi-CGSTAB with one cycle as right preconditioner |
+//! | acceleration | `crate::linsolve::krylov` | Bi-CGSTAB with one cycle as right preconditioner |
 //!
 //! Coarse unknowns are the fine unknowns with odd 0-based interior index in all three
 //! directions (`n` unknowns → `n / 2`, any size). Coarsening stops at `coarse_enough`
@@ -46,7 +46,6 @@ mod coarse;
 mod cycle;
 #[cfg(test)]
 mod diagnostics;
-mod krylov;
 mod level;
 mod plane;
 mod rap;
@@ -335,7 +334,7 @@ impl LinearSolver3 for Multigrid3 {
                 h.cycle(0, p.cycle, p, lv, scratch);
                 from_padded(l0, &lv[0].x, out);
             };
-            krylov::bicgstab(&mut apply, &mut precond, b, x, ctl)
+            crate::linsolve::krylov::bicgstab(&mut apply, &mut precond, b, x, ctl)
         } else {
             solve_cycles(h, p, &mut ws, b, x, ctl)
         };

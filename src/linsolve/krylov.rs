@@ -1,17 +1,24 @@
-//! Bi-CGSTAB (van der Vorst 1992) over closures, right-preconditioned: the 3D counterpart of
-//! `crate::multigrid::krylov` for any operator and preconditioner (here one multigrid cycle).
+//! Bi-CGSTAB (van der Vorst 1992) over closures, right-preconditioned, for any operator and
+//! preconditioner: one cycle of the 2D multigrid ([`crate::multigrid::bicgstab`]) or of the 3D
+//! one, or ILU(0) ([`crate::volume::BiCgStabIlu`]), the Krylov half of the paper's THREED.
 //! `residual_history` holds `‖r_k‖₂/‖r_0‖₂` after each iteration (two preconditioner
 //! applications); when the recursive residual reaches the tolerance the true residual is
 //! checked and the iteration restarts from it if it drifted.
 
-use super::use_par;
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
 use rayon::prelude::*;
 
-/// Relative residual beyond which an iteration counts as diverged (as in 2D).
-pub(super) const DIVERGED: f64 = 1e3;
+/// Relative residual beyond which an iteration (cycles or Bi-CGSTAB) counts as diverged.
+pub const DIVERGED: f64 = 1e3;
 
-pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+/// True if vectors of `n` entries are worth rayon.
+#[inline]
+fn use_par(n: usize) -> bool {
+    n >= 1 << 15 && rayon::current_num_threads() > 1
+}
+
+/// Σ a_i b_i, in parallel chunks when large.
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
     if use_par(a.len()) {
         a.par_chunks(8192)
             .zip(b.par_chunks(8192))
@@ -37,7 +44,7 @@ fn update(out: &mut [f64], f: impl Fn(usize, &mut f64) + Sync + Send) {
 /// Solves `A x = b` with `apply(v, out)`: `out = A v`, and `precond(v, out)`: `out ≈ A⁻¹ v`.
 /// `x` holds the initial guess. Stops at `‖r‖ ≤ rel_tol ‖r₀‖` or after `max_iter` iterations
 /// (`converged: false`); relative residual above 1e3 or NaN is [`SolveError::Diverged`].
-pub(super) fn bicgstab(
+pub fn bicgstab(
     apply: &mut dyn FnMut(&[f64], &mut [f64]),
     precond: &mut dyn FnMut(&[f64], &mut [f64]),
     b: &[f64],
