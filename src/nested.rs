@@ -240,12 +240,18 @@ fn sub<const D: usize>(a: &Grid2<D>, b: &Grid2<D>) -> Grid2<D> {
 /// Richardson extrapolation of the displacement `d2` (level 2h) with `p4` (level 4h
 /// interpolated to 2h), assuming an O(h²) difference between the levels.
 fn extrapolate<const D: usize>(d2: &Grid2<D>, p4: &Grid2<D>) -> Grid2<D> {
-    zip_with(d2, p4, |u, v| u + 0.25 * (u - v))
+    zip_with(d2, p4, richardson)
+}
+
+/// Richardson's step for an O(h²) difference: `d2 + (d2 − p4) / 4` (2D and volume levels).
+#[inline]
+pub(crate) fn richardson(d2: f64, p4: f64) -> f64 {
+    d2 + 0.25 * (d2 - p4)
 }
 
 /// Cubic interpolation weights of the midpoint after coarse node `k` of `m` (one-sided at the
-/// ends, linear for fewer than 4 nodes): `(first node, weights)`.
-fn mid_weights(k: usize, m: usize) -> (usize, [f64; 4]) {
+/// ends, linear for fewer than 4 nodes): `(first node, weights)`. Shared with the volume levels.
+pub(crate) fn mid_weights(k: usize, m: usize) -> (usize, [f64; 4]) {
     const C: f64 = 1.0 / 16.0;
     if m < 4 {
         (k, [0.5, 0.5, 0.0, 0.0])

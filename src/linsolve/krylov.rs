@@ -6,16 +6,11 @@
 //! checked and the iteration restarts from it if it drifted.
 
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
+use crate::multigrid::use_par;
 use rayon::prelude::*;
 
 /// Relative residual beyond which an iteration (cycles or Bi-CGSTAB) counts as diverged.
 pub const DIVERGED: f64 = 1e3;
-
-/// True if vectors of `n` entries are worth rayon.
-#[inline]
-fn use_par(n: usize) -> bool {
-    n >= 1 << 15 && rayon::current_num_threads() > 1
-}
 
 /// Σ a_i b_i, in parallel chunks when large.
 pub fn dot(a: &[f64], b: &[f64]) -> f64 {

@@ -179,22 +179,23 @@ pub struct Multigrid {
     pool: Mutex<Vec<Workspace>>,
 }
 
-/// True if a grid of `n` unknowns is large enough for rayon to pay.
+/// True if a grid of `n` unknowns is large enough for rayon to pay (2D and 3D multigrid,
+/// Bi-CGSTAB).
 #[inline]
-fn use_par(n: usize) -> bool {
+pub(crate) fn use_par(n: usize) -> bool {
     n >= 1 << 15 && rayon::current_num_threads() > 1
 }
 
 /// A raw pointer that may cross threads; users guarantee disjoint writes.
 #[derive(Clone, Copy)]
-struct SharedPtr(*mut f64);
+pub(crate) struct SharedPtr(pub(crate) *mut f64);
 // SAFETY: only used for disjoint writes (see the kernels that create one).
 unsafe impl Send for SharedPtr {}
 unsafe impl Sync for SharedPtr {}
 
 impl SharedPtr {
     #[inline]
-    fn get(self) -> *mut f64 {
+    pub(crate) fn get(self) -> *mut f64 {
         self.0
     }
 }

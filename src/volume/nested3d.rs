@@ -58,7 +58,7 @@ use super::picard3d;
 use super::solver3d::LinearSolver3;
 use super::VolumeResult;
 use crate::domain::ControlKind;
-use crate::nested::{COARSE_STOP, MIN_NODES};
+use crate::nested::{mid_weights, richardson, COARSE_STOP, MIN_NODES};
 use crate::poisson2d::{PicardParams, PicardStep};
 use crate::{Grid3, Result};
 use rayon::prelude::*;
@@ -270,22 +270,7 @@ fn zip_with(a: &Grid3, b: &Grid3, f: impl Fn(f64, f64) -> f64 + Sync) -> Grid3 {
 /// Richardson extrapolation of the displacement `d2` (level 2h) with `p4` (level 4h
 /// interpolated to 2h), assuming an O(h²) difference between the levels.
 fn extrapolate(d2: &Grid3, p4: &Grid3) -> Grid3 {
-    zip_with(d2, p4, |u, v| u + 0.25 * (u - v))
-}
-
-/// Cubic interpolation weights of the midpoint after coarse node `k` of `m` (one-sided at the
-/// ends, linear for fewer than 4 nodes): `(first node, weights)`; those of `crate::nested`.
-fn mid_weights(k: usize, m: usize) -> (usize, [f64; 4]) {
-    const C: f64 = 1.0 / 16.0;
-    if m < 4 {
-        (k, [0.5, 0.5, 0.0, 0.0])
-    } else if k == 0 {
-        (0, [5.0 * C, 15.0 * C, -5.0 * C, C])
-    } else if k + 2 == m {
-        (m - 4, [C, -5.0 * C, 15.0 * C, 5.0 * C])
-    } else {
-        (k - 1, [-C, 9.0 * C, 9.0 * C, -C])
-    }
+    zip_with(d2, p4, richardson)
 }
 
 /// Cubic interpolation in index space along axis `ax` of the array `v` of dims `d` to the

@@ -56,6 +56,7 @@ mod transfer;
 use super::solver3d::LinearSolver3;
 use super::stencil19::Stencil19;
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
+use crate::multigrid::{use_par, SharedPtr};
 use coarse::CoarseLu;
 use cycle::{from_padded, solve_cycles, to_padded, Hierarchy, Workspace};
 use level::Level;
@@ -133,26 +134,6 @@ pub struct Multigrid3 {
     params: Mg3Params,
     h: Option<Hierarchy>,
     pool: Mutex<Vec<Workspace>>,
-}
-
-/// True if `n` unknowns are worth rayon.
-#[inline]
-fn use_par(n: usize) -> bool {
-    n >= 1 << 15 && rayon::current_num_threads() > 1
-}
-
-/// A raw pointer that may cross threads; users guarantee disjoint writes.
-#[derive(Clone, Copy)]
-struct SharedPtr(*mut f64);
-// SAFETY: only used for disjoint writes (see the kernels that create one).
-unsafe impl Send for SharedPtr {}
-unsafe impl Sync for SharedPtr {}
-
-impl SharedPtr {
-    #[inline]
-    fn get(self) -> *mut f64 {
-        self.0
-    }
 }
 
 /// Level sizes for fine size `dims`.
