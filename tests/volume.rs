@@ -278,7 +278,7 @@ fn wing_block_holds_the_prescribed_wall_spacing_fold_free() {
     // target (measured 1.000 … 1.011, without it down to 0.55). `WING_EXTRA` adds keys to the
     // case (`wall_orthogonal = false` prints those numbers and fails).
     let w = ellipgrid::volume::wall::parse_face("F3").unwrap();
-    let hn = ellipgrid::volume::wall::wall_normal::normal_heights(&g, w);
+    let hn = ellipgrid::volume::wall_normal::normal_heights(&g, w);
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
     for k in 1..nk - 1 {
         let (le, te) = (g.point(0, 0, k), g.point(ni - 1, 0, k));

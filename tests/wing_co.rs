@@ -135,7 +135,7 @@ fn co_block_lines_leave_the_wall_along_its_normal() {
     let q = &rep.quality;
     let [ni, nj, nk] = SMALL;
     let w = ellipgrid::volume::wall::parse_face("F3").unwrap();
-    let hn = ellipgrid::volume::wall::wall_normal::normal_heights(&g, w);
+    let hn = ellipgrid::volume::wall_normal::normal_heights(&g, w);
     let (mut lo, mut hi, mut sum) = (f64::INFINITY, 0.0f64, 0.0);
     let mut worst = [0usize; 2];
     for k in 1..nk - 1 {

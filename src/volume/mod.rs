@@ -28,6 +28,7 @@ pub mod quality3d;
 pub mod solver3d;
 pub mod stencil19;
 pub mod wall;
+pub mod wall_normal;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 

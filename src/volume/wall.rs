@@ -38,8 +38,7 @@ use crate::poisson2d::{PicardInfo, PicardParams, PicardStep};
 use crate::transform::ParamGrid;
 use crate::{Error, Grid2, Grid3, Result};
 
-#[path = "wall_normal.rs"]
-pub mod wall_normal;
+use super::wall_normal;
 
 /// Correction passes at most (each a re-solve from the current grid).
 pub const MAX_PASSES: usize = 6;
@@ -80,12 +79,12 @@ pub fn parse_face(s: &str) -> Option<usize> {
 }
 
 /// Normal axis of face f (0 = i, 1 = j, 2 = k) and whether the face is at the low end.
-fn normal(f: usize) -> (usize, bool) {
+pub(super) fn normal(f: usize) -> (usize, bool) {
     (f / 2, f % 2 == 0)
 }
 
 /// Tangential axes (a, b) of face f, as in [`super::faces`].
-fn tangents(f: usize) -> (usize, usize) {
+pub(super) fn tangents(f: usize) -> (usize, usize) {
     match f / 2 {
         0 => (1, 2),
         1 => (0, 2),
@@ -94,7 +93,7 @@ fn tangents(f: usize) -> (usize, usize) {
 }
 
 /// The wall-side neighbour of block node n along axis d (one step into the block).
-fn step_in(n: [usize; 3], d: usize, lo: bool) -> [usize; 3] {
+pub(super) fn step_in(n: [usize; 3], d: usize, lo: bool) -> [usize; 3] {
     let mut m = n;
     if lo {
         m[d] += 1;
@@ -110,7 +109,7 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// The remap weight (1 − v)^q.
 #[inline]
-fn weight(v: f64) -> f64 {
+pub(super) fn weight(v: f64) -> f64 {
     (1.0 - v).powi(REMAP_POWER)
 }
 

@@ -27,9 +27,9 @@
 //! (the quality report's orthogonality of the face) and the wall-normal distance of the first
 //! off-wall node over its target, at the wall nodes off the rim.
 
-use super::super::bilinear3d::ParamGrid3;
-use super::super::faces::{block_node, face_dims};
-use super::{normal, step_in, tangents};
+use super::bilinear3d::ParamGrid3;
+use super::faces::{block_node, face_dims};
+use super::wall::{self, normal, step_in, tangents};
 use crate::Grid3;
 
 /// Largest total shift of a tangential parameter, as a fraction of the uncorrected gap to the
@@ -181,7 +181,7 @@ impl TangentGoals {
             let v = pg.at(flat(n, dims))[d];
             let v = if lo { v } else { 1.0 - v };
             let fade = 1.0 / (1.0 + (norm(r) / (LAYER * width)).powi(2));
-            let psi = super::weight(v.clamp(0.0, 1.0)) * fade;
+            let psi = wall::weight(v.clamp(0.0, 1.0)) * fade;
             let (psi, t) = match nrm {
                 Some(nv) if psi.is_finite() => (psi, tangential(r, nv)),
                 _ => (0.0, [0.0; 3]),
@@ -332,7 +332,7 @@ pub fn normal_heights(g: &Grid3, w: usize) -> Vec<f64> {
 }
 
 /// The near-wall figure at face `w` against the target first heights `targets` (face order,
-/// e.g. [`super::wall_targets`]): the quality report's orthogonality of that face (reused
+/// e.g. [`super::wall::wall_targets`]): the quality report's orthogonality of that face (reused
 /// from [`crate::volume::quality3d`]) and the wall-normal distances of the first off-wall
 /// nodes relative to the targets, both at the wall nodes off the rim.
 pub fn wall_figure(g: &Grid3, w: usize, targets: &[f64]) -> WallFigure {
@@ -346,7 +346,7 @@ pub fn wall_figure(g: &Grid3, w: usize, targets: &[f64]) -> WallFigure {
         }
     }
     WallFigure {
-        face: super::super::faces::FACE_NAMES[w].to_string(),
+        face: super::faces::FACE_NAMES[w].to_string(),
         nodes: f.nodes,
         angle_max_deg: f.orthogonality_max_deg,
         angle_mean_deg: f.orthogonality_mean_deg,
@@ -357,9 +357,9 @@ pub fn wall_figure(g: &Grid3, w: usize, targets: &[f64]) -> WallFigure {
 
 #[cfg(test)]
 mod tests {
-    use super::super::super::faces::Faces;
-    use super::super::super::DirectLu3;
-    use super::super::{grid_volume_wall_with, parse_face, wall_targets, WallOptions};
+    use super::super::faces::Faces;
+    use super::super::wall::{grid_volume_wall_with, parse_face, wall_targets, WallOptions};
+    use super::super::DirectLu3;
     use super::*;
     use crate::poisson2d::PicardParams;
 

@@ -58,7 +58,7 @@ pub struct VolumeSpec {
     /// interpolation of the first spacings of the four edges leaving it ([`super::wall`]).
     pub wall: Option<String>,
     /// With `wall`: also make the grid lines leave the wall along its normal
-    /// ([`super::wall::wall_normal`]; default true).
+    /// ([`super::wall_normal`]; default true).
     pub wall_orthogonal: Option<bool>,
     #[serde(rename = "E1")]
     pub e1: Option<EdgeSpec>,

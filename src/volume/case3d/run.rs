@@ -2,8 +2,8 @@
 //! the transfinite start grid, and the regridding of volume blocks of existing grids.
 
 use super::super::quality3d::{quality3d, QualityReport3};
-use super::super::wall::wall_normal::{wall_figure, WallFigure};
 use super::super::wall::{check_kind, grid_volume_wall_with, wall_targets, WallOptions};
+use super::super::wall_normal::{wall_figure, WallFigure};
 use super::super::{for_block, grid_volume, progress_enabled, transfinite, Faces};
 use super::{volume_faces, volume_name, volume_place, wall_face};
 use crate::case::LoadedCase;
