@@ -275,6 +275,21 @@ impl LinearSolver3 for BiCgStabIlu {
 mod tests {
     use super::*;
 
+    #[test]
+    fn auto_picks_multigrid_for_large_blocks_and_names_are_checked() {
+        assert_eq!(
+            for_block("auto", [33, 33, 33]).unwrap().name(),
+            "bicgstab-ilu0"
+        );
+        assert_eq!(for_block("auto", [65, 65, 65]).unwrap().name(), "multigrid");
+        assert_eq!(
+            for_block("direct", [65, 65, 65]).unwrap().name(),
+            "direct-lu"
+        );
+        let e = for_block("gmres", [9, 9, 9]).err().unwrap();
+        assert!(e.contains("'gmres'") && e.contains("auto"), "{e}");
+    }
+
     /// An anisotropic, non-symmetric 19-point operator like a clustered-wall Picard step.
     fn model(nx: usize, ny: usize, nz: usize, aniso: f64) -> Stencil19 {
         let mut a = Stencil19::zeros(nx, ny, nz);
