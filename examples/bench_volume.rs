@@ -119,6 +119,15 @@ fn whole(n: usize, faces: &Faces, solver: &mut dyn LinearSolver3) {
         q.folded_cells,
         r.picard.final_residual
     );
+    for (k, s) in r.picard.history.iter().enumerate() {
+        println!(
+            "    fine step {}: update {:.2e}, cycles {:?}, linear residuals {:.1e}",
+            k + 1,
+            s.update,
+            s.linear_iterations,
+            s.linear_residual.iter().fold(0.0f64, |a, &b| a.max(b)),
+        );
+    }
 }
 
 fn main() {

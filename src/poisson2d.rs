@@ -379,10 +379,13 @@ pub(crate) fn solve_timed<const D: usize>(
 }
 
 /// The relative linear tolerance of the next Picard step: `linear_tolerance` without forcing,
-/// else `clamp(max(0.5 ρ, 0.1 tol / u), linear_tolerance, linear_forcing)` with ρ the last
+/// else `clamp(max(0.5 ρ, 0.5 tol / u), linear_tolerance, linear_forcing)` with ρ the last
 /// observed Picard contraction and u = ρ · (last update) the predicted next update: no more
-/// accurate than the Picard error, and no more than a tenth of the Picard tolerance in
-/// absolute terms (which also keeps the request above round-off near convergence).
+/// accurate than the Picard error, and no more than half the Picard tolerance in absolute
+/// terms (which also keeps the request above round-off near convergence). The stop test
+/// ([`error_estimate`]) counts the linear error η u of the last step, so a looser request can
+/// cost a step but never a wrong convergence claim; half (rather than a tenth, as measured
+/// before) saves the second cycle of the last step at 129³ (bench_volume: 85 → 77 WU).
 /// `linear_forcing` for the first two steps. Shared with the volume Picard iteration
 /// (`crate::volume::picard3d`).
 pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
@@ -395,7 +398,7 @@ pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
             let rho = b.update / a.update;
             let predicted = rho * b.update;
             (0.5 * rho)
-                .max(0.1 * params.tolerance / predicted)
+                .max(0.5 * params.tolerance / predicted)
                 .clamp(floor, cap)
         }
         _ => cap,

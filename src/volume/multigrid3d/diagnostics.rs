@@ -93,7 +93,10 @@ fn explore() {
 #[test]
 #[ignore]
 fn setup_phases() {
-    let n = 65;
+    let n: usize = std::env::var("N")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(65);
     let sv: Vec<f64> = (0..n)
         .map(|t| ((t as f64 / (n - 1) as f64) * 4.0).sinh() / 4f64.sinh())
         .collect();

@@ -38,6 +38,9 @@ pub(super) const fn off27(m: usize) -> [isize; 3] {
     ]
 }
 
+/// The 27-point rows of one k-plane and the 19-point rows they are copied from.
+type PlaneRows<'a> = (&'a mut [[f64; 27]], &'a [[f64; 19]]);
+
 /// One level: operator, line factors and (if not the coarsest) the transfer stars to the next.
 #[derive(Debug)]
 pub(super) struct Level {
@@ -112,19 +115,38 @@ impl Level {
                 OFFSETS[m][2] as isize,
             )
         });
-        let mut bad = None;
-        for (p, (row, src)) in self.a.iter_mut().zip(a.coefs()).enumerate() {
-            let ins = a.inside(p % nx, (p / nx) % ny, p / (nx * ny));
-            *row = [0.0; 27];
-            for m in 0..19 {
-                if ins[m] {
-                    row[slots[m]] = src[m];
+        let plane = nx * ny;
+        let fill = |(k, (rows, src)): (usize, PlaneRows)| {
+            let mut bad = None;
+            for (q, (row, src)) in rows.iter_mut().zip(src).enumerate() {
+                let ins = a.inside(q % nx, q / nx, k);
+                *row = [0.0; 27];
+                for m in 0..19 {
+                    if ins[m] {
+                        row[slots[m]] = src[m];
+                    }
+                }
+                if bad.is_none() && !row.iter().all(|v| v.is_finite()) {
+                    bad = Some(k * plane + q);
                 }
             }
-            if bad.is_none() && !row.iter().all(|v| v.is_finite()) {
-                bad = Some(p);
-            }
-        }
+            bad
+        };
+        let bad = if use_par(self.a.len()) {
+            self.a
+                .par_chunks_mut(plane)
+                .zip(a.coefs().par_chunks(plane))
+                .enumerate()
+                .filter_map(fill)
+                .min()
+        } else {
+            self.a
+                .chunks_mut(plane)
+                .zip(a.coefs().chunks(plane))
+                .enumerate()
+                .filter_map(fill)
+                .min()
+        };
         match bad {
             Some(p) => Err(SolveError::Singular(format!(
                 "multigrid: non-finite coefficient in row {p}"
