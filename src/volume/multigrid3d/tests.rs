@@ -374,3 +374,58 @@ fn thin_and_flat_grids() {
         }
     }
 }
+
+/// `update` keeps the transfers, coarse operators and plane solvers of the last setup; the
+/// cycles must still converge, at the usual rate, to the solution of the *new* operator (the
+/// plane sweeps work in correction form: a stale plane solver only smooths a little worse).
+#[test]
+fn update_keeps_the_hierarchy_and_solves_the_new_operator() {
+    let ctl = SolveControl {
+        rel_tol: 1e-10,
+        max_iter: 60,
+    };
+    // lines only where they work (no wall clustering: module docs)
+    for (smoother, h1) in [(Smoother3::Planes, Some(1e-4)), (Smoother3::Lines, None)] {
+        let g = warped([23, 19, 21], 1, h1);
+        let a1 = picard_operator(&g, true);
+        let mut a2 = a1.clone();
+        for (p, row) in a2.coefs_mut().iter_mut().enumerate() {
+            let s = 1.0 + 0.02 * (p as f64 * 0.37).sin();
+            for v in row.iter_mut() {
+                *v *= s;
+            }
+        }
+        let xe = exact(a2.len());
+        let mut b = vec![0.0; a2.len()];
+        a2.apply(&xe, &mut b);
+        let mut mg = Multigrid3::new(Mg3Params {
+            smoother,
+            ..Default::default()
+        });
+        mg.setup(&a1).unwrap();
+        mg.update(&a2).unwrap();
+        let mut x = vec![0.0; a2.len()];
+        let info = mg.solve(&b, &mut x, &ctl).unwrap();
+        let rho = info
+            .residual_history
+            .last()
+            .unwrap()
+            .powf(1.0 / info.iterations as f64);
+        let err = x
+            .iter()
+            .zip(&xe)
+            .map(|(u, v)| (u - v).abs())
+            .fold(0.0, f64::max);
+        eprintln!(
+            "update {smoother:?}: factor {rho:.2e} ({} cycles), error {err:.1e}",
+            info.iterations
+        );
+        assert!(info.converged && rho < 0.1, "{smoother:?}: {info:?}");
+        assert!(err < 1e-8, "{smoother:?}: error {err}");
+    }
+    // without a hierarchy of that size, update is a full setup
+    let mut mg = Multigrid3::default();
+    let a3 = poisson7(9, 8, 7, [1.0, 1.0, 1.0]);
+    mg.update(&a3).unwrap();
+    assert_eq!(mg.info().unwrap().levels[0], [9, 8, 7]);
+}
