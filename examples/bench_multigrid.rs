@@ -5,7 +5,8 @@
 //! For 5- and 9-point Poisson on uniform squares of N² nodes (N − 2 unknowns per direction)
 //! and a boundary-layer grid Laplacian (first spacing 1e-5 at the wall, aspect ratio ≈ 1e4 or
 //! more): cycles to reduce the residual by 1e-10, mean convergence factor per cycle, setup and
-//! solve seconds, ns per unknown per cycle, and faer's sparse LU for N ≤ 513.
+//! solve seconds (the fastest of repeated solves), ns per unknown per cycle, and faer's sparse
+//! LU for N ≤ 513.
 
 use ellipgrid::linsolve::direct::DirectLu;
 use ellipgrid::linsolve::{LinearSolver, SolveControl};
@@ -108,10 +109,20 @@ fn run(label: &str, nodes: usize, a: &Stencil9, params: &MgParams, direct: bool)
     // later solves (other right-hand sides, later Picard steps) reuse it: time one of those
     let mut x = vec![0.0; n];
     mg.solve(&b, &mut x, &ctl).expect("solve");
-    x.fill(0.0);
-    let t = Instant::now();
-    let info = mg.solve(&b, &mut x, &ctl).expect("solve");
-    let t_solve = t.elapsed().as_secs_f64();
+    // the fastest of repeated solves (at least 5, and at least 1 s in all): a single solve
+    // at 257² lasts ~10 ms, where thread wake-ups and other jobs make single timings vary 1.5×
+    let (mut t_solve, mut spent, mut reps) = (f64::INFINITY, 0.0, 0);
+    let mut info = None;
+    while reps < 5 || spent < 1.0 {
+        x.fill(0.0);
+        let t = Instant::now();
+        info = Some(mg.solve(&b, &mut x, &ctl).expect("solve"));
+        let dt = t.elapsed().as_secs_f64();
+        t_solve = t_solve.min(dt);
+        spent += dt;
+        reps += 1;
+    }
+    let info = info.expect("solved");
     let k = info.iterations.max(1);
     let factor = info
         .residual_history
@@ -157,7 +168,8 @@ fn main() {
     let bl_sizes: &[usize] = if quick { &[513] } else { &[513, 1025] };
     println!(
         "threads {}; setup = refresh of an allocated hierarchy (new operator, same size); \
-         solve = cycles from x = 0 to a 1e-10 residual reduction (workspace reused); \
+         solve = cycles from x = 0 to a 1e-10 residual reduction (workspace reused; fastest of \
+         ≥ 5 solves, ≥ 1 s); \
          err = |x - x*|/|x*|; faer LU = factor + solve",
         rayon::current_num_threads()
     );

@@ -296,6 +296,30 @@ pub(super) fn xzebra(
     }
 }
 
+/// Rows ahead whose strip of `x` and `b` a y-line sweep (and the residual on columns)
+/// prefetches: the strip of a column block (W columns, 256 bytes) lies on a new 4 KB page in
+/// every row, where the hardware prefetcher does not follow. Measured at 2049² (kernel
+/// timings, 3 runs each): a y-line sweep 7.0–7.5 ns per unknown against 8.3–9.1 without;
+/// 2 to 16 rows ahead all alike.
+const PREFETCH_ROWS: usize = 3;
+
+/// Asks for the cache lines of `len` values from `p` (a hint; no effect off x86-64).
+#[inline(always)]
+fn prefetch_span(p: *const f64, len: usize) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        let mut k = 0;
+        while k < len {
+            // SAFETY: prefetch is a hint and never faults; the address is only computed
+            unsafe { _mm_prefetch(p.wrapping_add(k) as *const i8, _MM_HINT_T0) };
+            k += 8;
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (p, len);
+}
+
 /// Zebra y-line half sweep over the columns `i ≡ colour (mod 2)` with the y-line operator.
 pub(super) fn yzebra(yop: &YLineOp, nx: usize, ny: usize, x: &mut [f64], b: &[f64], colour: usize) {
     let pd = pad(nx);
@@ -320,6 +344,11 @@ pub(super) fn yzebra(yop: &YLineOp, nx: usize, ny: usize, x: &mut [f64], b: &[f6
         unsafe {
             for (j, ops) in op.chunks_exact(cnt).enumerate() {
                 let row = j * nx;
+                if j + PREFETCH_ROWS < ny {
+                    let ahead = row + PREFETCH_ROWS * nx + first;
+                    prefetch_span(x.add(ahead + nx), 2 * cnt);
+                    prefetch_span(b.as_ptr().add(ahead), 2 * cnt);
+                }
                 for (t, m) in ops.iter().enumerate() {
                     let i = first + 2 * t;
                     let p = row + i;
@@ -491,6 +520,11 @@ fn residual_cols(
         unsafe {
             for j in 0..ny {
                 let row = j * nx;
+                if j + PREFETCH_ROWS < ny {
+                    let ahead = row + PREFETCH_ROWS * nx + i0;
+                    prefetch_span(x.as_ptr().add(pd + ahead + nx), i1 - i0);
+                    prefetch_span(b.as_ptr().add(ahead), i1 - i0);
+                }
                 let mut i = other;
                 while i < i1 {
                     *rp.add(row + i) = 0.0;
