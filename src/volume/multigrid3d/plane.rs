@@ -172,7 +172,9 @@ impl Planes {
         let [nx, ny, _] = dims;
         let (e1, e2) = axes(d);
         let len = dims[e1] * dims[e2];
-        let qo = lev.qoff();
+        let (qo, qo19) = (lev.qoff(), lev.qoff19());
+        assert_eq!(x.len(), lev.padded_len());
+        assert!(b.len() == lev.n() && pb.len() == lev.n() && px.len() == lev.n());
         let ctl = SolveControl {
             rel_tol: 0.0,
             max_iter: 1,
@@ -189,17 +191,11 @@ impl Planes {
                 // unknowns of this colour: every other i (d = 0), j (d = 1) or k (d = 2)
                 let point = |i: usize, j: usize, k: usize| {
                     let p = i + nx * (j + ny * k);
-                    let q = lev.q(i, j, k) as isize;
-                    let row = &lev.a[p];
-                    let mut s = b[p];
                     let at = pos([i, j, k]);
-                    // SAFETY: padded reads stay inside x (ghost layer); every unknown has its
-                    // own position in pb, px and tasks own k-planes.
+                    // SAFETY: x is padded (asserted) and lev.q the padded index of (i, j, k);
+                    // every unknown has its own position in pb, px, and tasks own k-planes.
                     unsafe {
-                        let xr = x.as_ptr();
-                        for m in 0..27 {
-                            s -= row[m] * *xr.offset(q + qo[m]);
-                        }
+                        let s = b[p] - lev.times_row(p, x, lev.q(i, j, k), &qo, &qo19);
                         *bp.get().add(at) = s;
                         *xq.get().add(at) = 0.0;
                     }
