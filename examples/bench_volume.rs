@@ -7,7 +7,8 @@
 //! Per size and solver (default both): the first Picard operator solved from zero to 1e-10
 //! (iterations, mean factor, setup and solve seconds, ns/unknown/iteration), and the whole
 //! `grid_volume` with default parameters (nested iteration, inexact Picard) side by side:
-//! seconds, work units, Picard steps per level. `--modes`: Bi-CGSTAB/ILU(0) with exact linear
+//! seconds, work units, Picard steps per level, and per fine Picard step its update, linear
+//! iterations (cycles) per coordinate and largest final linear residual. `--modes`: Bi-CGSTAB/ILU(0) with exact linear
 //! solves, inexact Picard, and nested iteration (slow: exact solves take ~50 s at 65³).
 
 use ellipgrid::domain::ControlKind;
@@ -121,7 +122,7 @@ fn whole(n: usize, faces: &Faces, solver: &mut dyn LinearSolver3) {
     );
     for (k, s) in r.picard.history.iter().enumerate() {
         println!(
-            "    fine step {}: update {:.2e}, cycles {:?}, linear residuals {:.1e}",
+            "    fine step {}: update {:.2e}, linear iterations {:?}, linear residuals {:.1e}",
             k + 1,
             s.update,
             s.linear_iterations,

@@ -35,12 +35,16 @@
 //! V(1,1) cycle are listed in `tests.rs`: ≤ 0.07 on every test case, 0.002–0.01 on the
 //! boundary-layer Picard operators.
 //!
-//! # Cost (`examples/bench_volume --solver both`, 2 cores shared with other jobs: ±50 %)
-//! First Picard operator of the benchmark block: 7–8 V-cycles to 1e-10 (factor 0.034, 0.044,
-//! 0.049 at 33³, 65³, 129³ nodes), 420–1060 ns per unknown and cycle, setup ≈ 2 cycles;
-//! Bi-CGSTAB/ILU(0) needs 25, 56, 107 iterations of 75–190 ns. Whole `grid_volume` (nested,
-//! inexact Picard): slower than Bi-CGSTAB at 33³ (0.6–0.8 s vs 0.2–0.6 s), about even at 65³
-//! (5.0–6.3 s vs 3.6–8.1 s), 1.9–2.5× faster at 129³ (34–45 s vs 84–87 s).
+//! # Cost (`examples/bench_volume --solver both`, idle 2-core machine)
+//! First Picard operator of the benchmark block: 8–9 V-cycles to 1e-10 (factor 0.043, 0.053,
+//! 0.063 at 33³, 65³, 129³ nodes), 280–310 ns per unknown and cycle, setup ≈ 3.5 cycles;
+//! Bi-CGSTAB/ILU(0) needs 25, 58, 105 iterations of 76–134 ns. Whole `grid_volume` (nested,
+//! inexact Picard): slower than Bi-CGSTAB at 33³ (0.30 s, 130 WU against 0.19 s, 95 WU),
+//! faster at 65³ (2.1 s, 98 WU against 3.7 s, 173 WU) and 3.7× faster at 129³ (13.6 s, 72 WU
+//! against 50.8 s, 261 WU). What brought 129³ from 117 to 72 WU: plane cycles of half the
+//! line sweeps (`plane::plane_params`), plane solvers kept by [`Multigrid3::update`], the
+//! 19-point rows on the fine level, and a Picard forcing term that lets the last step do with
+//! one cycle (`crate::poisson2d::forcing`).
 
 mod coarse;
 mod cycle;
