@@ -16,6 +16,7 @@ pub mod linsolve;
 pub mod multigrid;
 pub mod nested;
 pub mod orthogonal;
+pub(crate) mod picard;
 pub mod plot;
 pub mod poisson2d;
 pub mod quality;

@@ -8,13 +8,15 @@
 //!
 //! The linear systems are solved in correction form, A δ = b − A x_k from δ = 0, i.e. from the
 //! current iterate, and with an iterative solver only as accurately as the step needs
-//! ([`PicardParams::linear_forcing`]): one or two multigrid cycles per step. The stopping test
-//! (largest update below the tolerance) is the same for every solver.
+//! ([`PicardParams::linear_forcing`]): one or two multigrid cycles per step. The steps and the
+//! stopping test (an error estimate below the tolerance) are those of `src/picard.rs`, the
+//! same for every solver and for the volume system.
 
 use crate::boundary::Boundary2;
 use crate::control::Control2;
 use crate::grid::Grid2;
-use crate::linsolve::{LinearSolver, SolveControl, SolveError, SolveInfo};
+use crate::linsolve::LinearSolver;
+use crate::picard;
 use crate::stencil::Stencil9;
 use crate::{Error, Result};
 use rayon::prelude::*;
@@ -26,7 +28,7 @@ pub struct PicardParams {
     /// Stop when the Picard error, relative to the domain diameter, is below this: the
     /// largest node update of the last step, or, once the steps contract (ratio ρ < 0.5),
     /// its a-posteriori estimate ρ/(1 − ρ) · update + the step's linear error
-    /// (`poisson2d::error_estimate`). Default 1e-10.
+    /// (`picard::error_estimate`). Default 1e-10.
     pub tolerance: f64,
     /// At most this many Picard steps. Default 200.
     pub max_steps: usize,
@@ -334,36 +336,32 @@ pub(crate) fn solve_timed<const D: usize>(
             eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
             res
         };
-    let mut history: Vec<PicardStep> = Vec::new();
-    let mut converged = false;
-    for _ in 0..params.max_steps {
-        let res = evaluate(x, &mut a, &mut rhs, &mut r);
-        match history.last() {
-            Some(last) if last.update < SMALL_CHANGE => solver.update(&a),
-            _ => solver.setup(&a),
-        }
-        .map_err(solve_err)?;
-        let ctl = SolveControl {
-            rel_tol: forcing(params, &history),
-            max_iter: params.linear_max_iter,
-        };
-        let solver_ref: &dyn LinearSolver = solver;
-        let (infos, upd) = solve_corrections(&mut u, &r, |rc, uc| solver_ref.solve(rc, uc, &ctl));
-        let mut step = step_record(res, infos, place)?;
-        for (c, uc) in u.iter().enumerate() {
-            add_interior(uc, ni, nx, x.coord_mut(c));
-        }
-        step.update = upd / diam;
-        history.push(step);
-        let upd = upd / diam;
-        if !upd.is_finite() || !x.all_finite() {
-            return Err(solve_err(crate::linsolve::SolveError::Diverged(f64::NAN)));
-        }
-        if error_estimate(&history) < stop_threshold(params, &history, relative_stop) {
-            converged = true;
-            break;
-        }
-    }
+    let (history, converged) = picard::iterate(
+        params,
+        relative_stop,
+        place,
+        |small, ctl| {
+            let res = evaluate(x, &mut a, &mut rhs, &mut r);
+            if small {
+                solver.update(&a)
+            } else {
+                solver.setup(&a)
+            }
+            .map_err(solve_err)?;
+            let solver_ref: &dyn LinearSolver = solver;
+            let (infos, upd) =
+                picard::solve_corrections(&mut u, &r, |rc, uc| solver_ref.solve(rc, uc, ctl));
+            for (c, uc) in u.iter().enumerate() {
+                add_interior(uc, ni, nx, x.coord_mut(c));
+            }
+            Ok(picard::StepWork {
+                residual: res,
+                solves: infos,
+                update: if x.all_finite() { upd / diam } else { f64::NAN },
+            })
+        },
+        &mut |_, _| {},
+    )?;
     let final_residual = evaluate(x, &mut a, &mut rhs, &mut r);
     let info = PicardInfo {
         linear_solver: solver.name().to_string(),
@@ -376,121 +374,6 @@ pub(crate) fn solve_timed<const D: usize>(
         history,
     };
     Ok((info, eval_secs))
-}
-
-/// The relative linear tolerance of the next Picard step: `linear_tolerance` without forcing,
-/// else `clamp(max(0.5 ρ, 0.5 tol / u), linear_tolerance, linear_forcing)` with ρ the last
-/// observed Picard contraction and u = ρ · (last update) the predicted next update: no more
-/// accurate than the Picard error, and no more than half the Picard tolerance in absolute
-/// terms (which also keeps the request above round-off near convergence). The stop test
-/// ([`error_estimate`]) counts the linear error η u of the last step, so a looser request can
-/// cost a step but never a wrong convergence claim; half (rather than a tenth, as measured
-/// before) saves the second cycle of the last step at 129³ (bench_volume: 85 → 77 WU).
-/// `linear_forcing` for the first two steps. Shared with the volume Picard iteration
-/// (`crate::volume::picard3d`).
-pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
-    let (floor, cap) = (params.linear_tolerance, params.linear_forcing);
-    if cap <= floor {
-        return floor;
-    }
-    match history {
-        [.., a, b] if a.update > 0.0 && b.update > 0.0 => {
-            let rho = b.update / a.update;
-            let predicted = rho * b.update;
-            (0.5 * rho)
-                .max(0.5 * params.tolerance / predicted)
-                .clamp(floor, cap)
-        }
-        _ => cap,
-    }
-}
-
-/// The corrections of one Picard step in correction form, A δ = b − A x_k from δ₀ = 0, one
-/// coordinate per rayon task with the operator's one setup (`solve(r, δ)`); returns the
-/// solves' results and the largest |δ|. The correction form keeps the cycles' round-off
-/// relative to δ instead of x: near convergence the residual of x_k is itself at round-off
-/// level, and a solve for x would stagnate. Shared with the volume Picard iteration.
-pub(crate) fn solve_corrections<F>(
-    u: &mut [Vec<f64>],
-    r: &[Vec<f64>],
-    solve: F,
-) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64)
-where
-    F: Fn(&[f64], &mut [f64]) -> std::result::Result<SolveInfo, SolveError> + Sync,
-{
-    let infos = u
-        .par_iter_mut()
-        .zip(r.par_iter())
-        .map(|(uc, rc)| {
-            uc.fill(0.0);
-            solve(rc, uc)
-        })
-        .collect();
-    let largest = u
-        .iter()
-        .map(|uc| {
-            uc.par_iter()
-                .fold(|| 0.0f64, |m, v| m.max(v.abs()))
-                .reduce(|| 0.0, f64::max)
-        })
-        .fold(0.0f64, f64::max);
-    (infos, largest)
-}
-
-/// The record of one Picard step that started at residual `residual`, from the per-coordinate
-/// results of its linear solves (the first failure is the error, naming `place`); the update
-/// is filled in by the caller. Shared by the 2D and the volume Picard iterations.
-pub(crate) fn step_record(
-    residual: f64,
-    infos: Vec<std::result::Result<SolveInfo, SolveError>>,
-    place: &str,
-) -> Result<PicardStep> {
-    let mut step = PicardStep {
-        update: 0.0,
-        residual,
-        linear_iterations: Vec::with_capacity(infos.len()),
-        linear_residual: Vec::with_capacity(infos.len()),
-    };
-    for info in infos {
-        let info = info.map_err(|source| Error::Solve {
-            place: place.to_string(),
-            source,
-        })?;
-        step.linear_iterations.push(info.iterations);
-        step.linear_residual
-            .push(info.residual_history.last().copied().unwrap_or(0.0));
-    }
-    Ok(step)
-}
-
-/// The Picard error after the steps of `history` (relative to the diameter): the last update
-/// u, or, once the iteration contracts (ρ = u / previous update < 0.5), the a-posteriori
-/// bound of a contraction ρ/(1 − ρ) u plus the error η u of the inexact step (η its largest
-/// relative linear residual). With the contraction of 0.01–0.04 seen after nested iteration
-/// this saves the last Picard step, whose update would only confirm what the estimate says.
-pub(crate) fn error_estimate(history: &[PicardStep]) -> f64 {
-    match history {
-        [.., a, b] if a.update > 0.0 && b.update < 0.5 * a.update => {
-            let rho = b.update / a.update;
-            let eta = b.linear_residual.iter().copied().fold(0.0, f64::max);
-            (b.update * (rho / (1.0 - rho) + eta)).min(b.update)
-        }
-        [.., b] => b.update,
-        [] => f64::INFINITY,
-    }
-}
-
-/// The stopping threshold of the Picard iteration after the steps of `history`: the last
-/// update (relative to the diameter) must fall below the tolerance, or below
-/// `relative_stop` times the first update (a coarse level of nested iteration; 0 = off).
-/// Shared by the 2D and the volume Picard iterations.
-pub(crate) fn stop_threshold(
-    params: &PicardParams,
-    history: &[PicardStep],
-    relative_stop: f64,
-) -> f64 {
-    let first = history.first().map_or(0.0, |h| h.update);
-    params.tolerance.max(relative_stop * first)
 }
 
 /// Convenience: the start grid with the boundary of `b` and the solve of [24] from it.

@@ -7,24 +7,22 @@
 //! `Σ_ij α^ij x_{ξiξj} + Σ_k (Σ_ij α^ij P^k_ij) x_{ξk} = 0` (central differences in index space;
 //! mixed derivatives by the 4-corner formula that [`super::control3d`] uses, so the
 //! tensor-product box is an exact discrete solution), and solves it once per coordinate with
-//! the same operator. The stopping rule and the history are those of [`crate::poisson2d`].
+//! the same operator. The steps, the stopping rule and the history are those of the 2D
+//! system (`src/picard.rs`).
 //!
 //! The linear systems are solved in correction form, A δ = b − A x_k from δ = 0, and only as
 //! accurately as the step needs: the inexact Picard iteration of [`crate::poisson2d`], with the
 //! same forcing term η = clamp(0.5 ρ, linear_tolerance, linear_forcing) (ρ the observed Picard
 //! contraction; `PicardParams::linear_forcing`, 0 = every step to `linear_tolerance`). A step
 //! then costs a few Bi-CGSTAB iterations instead of a solve to 1e-10, and the fixed point, the
-//! discrete solution of [86], is unchanged. [`solve_timed`] also measures the work unit of
+//! discrete solution of [86], is unchanged. `solve_timed` also measures the work unit of
 //! nested iteration ([`super::nested3d`]).
 
 use super::control3d::Control3;
 use super::solver3d::LinearSolver3;
 use super::stencil19::{Stencil19, C, OFFSETS};
-use crate::linsolve::{SolveControl, SolveError};
-use crate::poisson2d::{
-    error_estimate, forcing, solve_corrections, step_record, stop_threshold, PicardInfo,
-    PicardParams, PicardStep, SMALL_CHANGE,
-};
+use crate::picard;
+use crate::poisson2d::{PicardInfo, PicardParams, PicardStep};
 use crate::{Error, Grid3, Result};
 use rayon::prelude::*;
 
@@ -272,36 +270,32 @@ pub(crate) fn solve_timed(
         eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
         res
     };
-    let mut history: Vec<PicardStep> = Vec::new();
-    let mut converged = false;
-    for step_no in 0..params.max_steps {
-        let res = evaluate(x, &mut a, &mut rhs, &mut r, &mut scratch);
-        match history.last() {
-            Some(last) if last.update < SMALL_CHANGE => solver.update(&a),
-            _ => solver.setup(&a),
-        }
-        .map_err(solve_err)?;
-        let ctl = SolveControl {
-            rel_tol: forcing(params, &history),
-            max_iter: params.linear_max_iter,
-        };
-        let sref: &dyn LinearSolver3 = solver;
-        let (infos, upd) = solve_corrections(&mut u, &r, |rc, uc| sref.solve(rc, uc, &ctl));
-        let mut step = step_record(res, infos, place)?;
-        for (c, uc) in u.iter().enumerate() {
-            add_interior(x, c, uc);
-        }
-        step.update = upd / diam;
-        progress(step_no + 1, &step);
-        history.push(step);
-        if !upd.is_finite() {
-            return Err(solve_err(SolveError::Diverged(f64::NAN)));
-        }
-        if error_estimate(&history) < stop_threshold(params, &history, relative_stop) {
-            converged = true;
-            break;
-        }
-    }
+    let (history, converged) = picard::iterate(
+        params,
+        relative_stop,
+        place,
+        |small, ctl| {
+            let res = evaluate(x, &mut a, &mut rhs, &mut r, &mut scratch);
+            if small {
+                solver.update(&a)
+            } else {
+                solver.setup(&a)
+            }
+            .map_err(solve_err)?;
+            let sref: &dyn LinearSolver3 = solver;
+            let (infos, upd) =
+                picard::solve_corrections(&mut u, &r, |rc, uc| sref.solve(rc, uc, ctl));
+            for (c, uc) in u.iter().enumerate() {
+                add_interior(x, c, uc);
+            }
+            Ok(picard::StepWork {
+                residual: res,
+                solves: infos,
+                update: upd / diam,
+            })
+        },
+        progress,
+    )?;
     let final_residual = evaluate(x, &mut a, &mut rhs, &mut r, &mut scratch);
     let info = PicardInfo {
         linear_solver: solver.name().to_string(),

@@ -44,7 +44,7 @@
 //! against 50.8 s, 261 WU). What brought 129³ from 117 to 72 WU: plane cycles of half the
 //! line sweeps (`plane::plane_params`), plane solvers kept by [`Multigrid3::update`], the
 //! 19-point rows on the fine level, and a Picard forcing term that lets the last step do with
-//! one cycle (`crate::poisson2d::forcing`).
+//! one cycle (`crate::picard::forcing`).
 
 mod coarse;
 mod cycle;
