@@ -115,26 +115,36 @@ fn edge_weights(m: &[f64; 9], ma: &[f64; 9], along_y: bool) -> [(f64, f64); 2] {
     let c = (t(pl[0]) + t(pl[1]) + t(pl[2])) - (t(mi[0]) + t(mi[1]) + t(mi[2]));
     let weights = |m: &[f64; 9], c: f64| {
         let sum = |side: [usize; 3]| m[side[0]] + m[side[1]] + m[side[2]];
-        let ac = sum(ce);
-        let sigma = -(sum(mi) + sum(pl)) / ac;
-        let sigma = if ac > 0.0 && sigma.is_finite() {
-            sigma.clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
-        let f = if dm + dp > 0.0 {
-            0.5 * (1.0 + (dm - dp) / (dm + dp) + c / (dm + dp + dq))
-        } else {
-            0.5
-        };
-        let f = if f.is_finite() {
-            f.clamp(0.0, 1.0)
-        } else {
-            0.5
-        };
-        (sigma * f, sigma * (1.0 - f))
+        split_weights(sum(mi), sum(pl), sum(ce), [dm, dp, dq], c)
     };
     [weights(m, c), weights(ma, -c)]
+}
+
+/// de Zeeuw's interpolation weights (minus side, plus side) of a fine point between two coarse
+/// points, shared by the 2D and the 3D transfers: the collapsed stencil's minus, plus and
+/// centre sums `am`, `ap`, `ac` give the total weight σ = −(am + ap)/ac (clamped to [0, 1];
+/// 1 for a non-positive centre), the symmetric magnitudes `d = [d₋, d₊, d⊥]` and the
+/// antisymmetric part `c` split it, f = ½ (1 + (d₋ − d₊)/(d₋ + d₊) + c/(d₋ + d₊ + d⊥)).
+#[inline]
+pub(crate) fn split_weights(am: f64, ap: f64, ac: f64, d: [f64; 3], c: f64) -> (f64, f64) {
+    let [dm, dp, dq] = d;
+    let sigma = -(am + ap) / ac;
+    let sigma = if ac > 0.0 && sigma.is_finite() {
+        sigma.clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let f = if dm + dp > 0.0 {
+        0.5 * (1.0 + (dm - dp) / (dm + dp) + c / (dm + dp + dq))
+    } else {
+        0.5
+    };
+    let f = if f.is_finite() {
+        f.clamp(0.0, 1.0)
+    } else {
+        0.5
+    };
+    (sigma * f, sigma * (1.0 - f))
 }
 
 /// One coarse row of prolongation and restriction stars, with its index.

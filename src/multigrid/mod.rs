@@ -61,6 +61,7 @@
 mod coarse;
 mod cycle;
 mod interp;
+pub(crate) use interp::split_weights;
 pub mod krylov;
 mod rap;
 mod relax;

@@ -21,6 +21,7 @@
 use super::level::{off27, s27, Level, CTR};
 use super::{use_par, SharedPtr};
 use crate::linsolve::SolveError;
+use crate::multigrid::split_weights;
 use rayon::prelude::*;
 
 /// Offsets of the 27 slots.
@@ -125,23 +126,7 @@ fn edge_weights(m: &[f64; 27], ma: &[f64; 27], d: usize) -> [(f64, f64); 2] {
                 _ => ac += v,
             }
         }
-        let sigma = -(am + ap) / ac;
-        let sigma = if ac > 0.0 && sigma.is_finite() {
-            sigma.clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
-        let f = if dm + dp > 0.0 {
-            0.5 * (1.0 + (dm - dp) / (dm + dp) + c / (dm + dp + dq))
-        } else {
-            0.5
-        };
-        let f = if f.is_finite() {
-            f.clamp(0.0, 1.0)
-        } else {
-            0.5
-        };
-        (sigma * f, sigma * (1.0 - f))
+        split_weights(am, ap, ac, [dm, dp, dq], c)
     };
     [weights(m, c), weights(ma, -c)]
 }
