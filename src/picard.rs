@@ -6,7 +6,7 @@
 //! more. [`iterate`] runs the steps; the system (assembly, solver, grid) is the caller's.
 
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
-use crate::poisson2d::{PicardParams, PicardStep, SMALL_CHANGE};
+use crate::poisson2d::{PicardInfo, PicardParams, PicardStep, SMALL_CHANGE};
 use crate::{Error, Result};
 use rayon::prelude::*;
 
@@ -59,6 +59,27 @@ pub(crate) fn iterate(
         }
     }
     Ok((history, false))
+}
+
+/// The report of an iteration by [`iterate`] with the linear solver `solver`, ending at
+/// residual `final_residual` (work units and coarse levels are filled in by nested iteration).
+pub(crate) fn info(
+    solver: &str,
+    params: &PicardParams,
+    history: Vec<PicardStep>,
+    converged: bool,
+    final_residual: f64,
+) -> PicardInfo {
+    PicardInfo {
+        linear_solver: solver.to_string(),
+        steps: history.len(),
+        converged,
+        tolerance: params.tolerance,
+        final_residual,
+        work_units: None,
+        coarse_steps: Vec::new(),
+        history,
+    }
 }
 
 /// The relative linear tolerance of the next Picard step: `linear_tolerance` without forcing,

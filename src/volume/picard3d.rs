@@ -297,16 +297,7 @@ pub(crate) fn solve_timed(
         progress,
     )?;
     let final_residual = evaluate(x, &mut a, &mut rhs, &mut r, &mut scratch);
-    let info = PicardInfo {
-        linear_solver: solver.name().to_string(),
-        steps: history.len(),
-        converged,
-        tolerance: params.tolerance,
-        final_residual,
-        work_units: None,
-        coarse_steps: Vec::new(),
-        history,
-    };
+    let info = picard::info(solver.name(), params, history, converged, final_residual);
     Ok((info, eval_secs))
 }
 
