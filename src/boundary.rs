@@ -11,8 +11,8 @@ use crate::{Error, Result};
 pub const CORNER_TOLERANCE: f64 = 1e-6;
 
 /// Four edges of a block in R^D. E1 (i = 0) and E2 (i = N) run along j; E3 (j = 0) and
-/// E4 (j = M) run along i. Corners are shared: E1[0] = E3[0], E2[0] = E3[N], E1[M] = E4[0],
-/// E2[M] = E4[N].
+/// E4 (j = M) run along i. Corners are shared: `E1[0] = E3[0]`, `E2[0] = E3[N]`,
+/// `E1[M] = E4[0]`, `E2[M] = E4[N]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Boundary2<const D: usize> {
     edges: [Vec<[f64; D]>; 4],

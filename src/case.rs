@@ -81,7 +81,7 @@ impl Default for SolverSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BlockSpec {
-    /// Name used in messages and outputs (default "block<k>").
+    /// Name used in messages and outputs (default `block<k>`).
     pub name: Option<String>,
     /// What the block is: "planar" (default; Section 2), "minimal" (a soap film spanned by
     /// four 3D edges; Section 3) or "surface" (a grid on a parametrized surface; Section 4).

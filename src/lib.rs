@@ -1,4 +1,6 @@
 //! ellipgrid: elliptic structured grid generation after Spekreijse & Boerstoel (NLR TP 96338).
+// Doc comments cite the paper's equations as [24], [86]–[88]: not links.
+#![allow(rustdoc::broken_intra_doc_links)]
 pub mod arclength;
 pub mod blend;
 pub mod boundary;

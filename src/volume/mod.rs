@@ -12,7 +12,7 @@
 //! | nested iteration, work units | [`nested3d`] |
 //! | linear solvers (Bi-CGSTAB/ILU(0), faer LU) | [`solver3d`] |
 //! | quality report | [`quality3d`] |
-//! | prescribed first-cell heights at a wall face | [`wall`] |
+//! | prescribed first-cell heights at a wall face | [`mod@wall`] |
 //! | case-file volume blocks, runs, smoothing | [`case3d`] |
 //!
 //! The entry point is [`grid_volume`].

@@ -5,7 +5,7 @@
 //! # Levels
 //! Level ℓ keeps every 2^ℓ-th node of the block in each direction. Coarsening goes on while
 //! all three dimensions are odd and the coarser level keeps at least
-//! [`MIN_NODES`](crate::nested::MIN_NODES) nodes each way; a block with an even dimension is
+//! [`MIN_NODES`] nodes each way; a block with an even dimension is
 //! solved by plain Picard.
 //!
 //! # The coarse problems are restrictions of the fine one
@@ -23,7 +23,7 @@
 //! tensor-product cubic interpolation in index space (one direction after the other). With two
 //! coarse levels the displacement on level ℓ + 1 is first extrapolated in the manner of
 //! Richardson, d ← d_2h + (d_2h − P d_4h) / 4. A coarse level stops at
-//! [`COARSE_STOP`](crate::nested::COARSE_STOP) times its first update (or at the Picard
+//! [`COARSE_STOP`] times its first update (or at the Picard
 //! tolerance); the finest at the Picard tolerance. A level whose Picard iteration fails or does
 //! not converge is skipped: the next level starts from the transfinite grid.
 //!

@@ -37,7 +37,7 @@ use std::path::PathBuf;
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct VolumeSpec {
-    /// Name used in messages and outputs (default "volume<k>").
+    /// Name used in messages and outputs (default `volume<k>`).
     pub name: Option<String>,
     /// Nodes along i (on E1–E4), j (E5–E8), k (E9–E12).
     pub ni: usize,
