@@ -1,6 +1,7 @@
 //! Control functions P11, P12, P22 of the Poisson system, eqs. [19, 20].
 
 use crate::transform::ParamGrid;
+use rayon::prelude::*;
 
 /// The six control functions per node, fixed during the whole elliptic solve:
 /// `p[n] = [P¹11, P²11, P¹12, P²12, P¹22, P²22]` at node n (i fastest); zero on the boundary.
@@ -32,8 +33,12 @@ impl Control2 {
         let (ni, nj) = (pg.ni(), pg.nj());
         let mut p = vec![[0.0; 6]; ni * nj];
         let (s, t) = (&pg.s, &pg.t);
-        for j in 1..nj.saturating_sub(1) {
-            for i in 1..ni - 1 {
+        // rows in parallel (1M nodes: 45 → ~20 ms on 2 cores)
+        p.par_chunks_mut(ni).enumerate().for_each(|(j, row)| {
+            if j == 0 || j + 1 >= nj {
+                return;
+            }
+            for (i, out) in row.iter_mut().enumerate().take(ni - 1).skip(1) {
                 let n = i + ni * j;
                 let (e, w, nn, ss) = (n + 1, n - 1, n + ni, n - ni);
                 let d = |f: &[f64]| {
@@ -52,9 +57,9 @@ impl Control2 {
                 let p11 = solve(sxx, txx);
                 let p12 = solve(sxy, txy);
                 let p22 = solve(syy, tyy);
-                p[n] = [p11[0], p11[1], p12[0], p12[1], p22[0], p22[1]];
+                *out = [p11[0], p11[1], p12[0], p12[1], p22[0], p22[1]];
             }
-        }
+        });
         Control2 { ni, nj, p }
     }
 

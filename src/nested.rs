@@ -218,10 +218,14 @@ fn subsample_param(pg: &ParamGrid, stride: usize) -> ParamGrid {
     ParamGrid::from_parts(ni, nj, s, t)
 }
 
-fn zip_with<const D: usize>(a: &Grid2<D>, b: &Grid2<D>, f: impl Fn(f64, f64) -> f64) -> Grid2<D> {
+fn zip_with<const D: usize>(
+    a: &Grid2<D>,
+    b: &Grid2<D>,
+    f: impl Fn(f64, f64) -> f64 + Sync,
+) -> Grid2<D> {
     let coords = std::array::from_fn(|c| {
         a.coord(c)
-            .iter()
+            .par_iter()
             .zip(b.coord(c))
             .map(|(&u, &v)| f(u, v))
             .collect()
