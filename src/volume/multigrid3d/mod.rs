@@ -41,7 +41,7 @@
 //! Bi-CGSTAB/ILU(0) needs 25, 58, 105 iterations of 76–134 ns. Whole `grid_volume` (nested,
 //! inexact Picard): slower than Bi-CGSTAB at 33³ (0.30 s, 130 WU against 0.19 s, 95 WU),
 //! faster at 65³ (2.1 s, 98 WU against 3.7 s, 173 WU) and 3.7× faster at 129³ (13.6 s, 72 WU
-//! against 50.8 s, 261 WU). What brought 129³ from 117 to 72 WU: plane cycles of half the
+//! against 50.8 s, 261 WU; 70–77 WU over 9 runs). What brought 129³ from 117 to 72 WU: plane cycles of half the
 //! line sweeps (`plane::plane_params`), plane solvers kept by [`Multigrid3::update`], the
 //! 19-point rows on the fine level, and a Picard forcing term that lets the last step do with
 //! one cycle (`crate::picard::forcing`).
