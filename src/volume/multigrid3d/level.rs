@@ -103,20 +103,19 @@ impl Level {
 
     /// Padded linear offsets of the 27 slots.
     pub fn qoff(&self) -> [isize; 27] {
+        std::array::from_fn(|m| self.qshift(off27(m)))
+    }
+
+    /// Padded linear offset of the neighbour at `o`.
+    #[inline]
+    fn qshift(&self, o: [isize; 3]) -> isize {
         let s = self.qstride();
-        std::array::from_fn(|m| {
-            let o = off27(m);
-            o[0] + s[1] as isize * o[1] + s[2] as isize * o[2]
-        })
+        o[0] + s[1] as isize * o[1] + s[2] as isize * o[2]
     }
 
     /// Padded linear offsets of the 19 slots of [`Stencil19`].
     pub fn qoff19(&self) -> [isize; 19] {
-        let s = self.qstride();
-        std::array::from_fn(|m| {
-            let o = OFFSETS[m].map(isize::from);
-            o[0] + s[1] as isize * o[1] + s[2] as isize * o[2]
-        })
+        std::array::from_fn(|m| self.qshift(OFFSETS[m].map(isize::from)))
     }
 
     /// Row `p` of the operator times padded `x` around padded index `q`: from the 19-point

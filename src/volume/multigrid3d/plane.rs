@@ -6,7 +6,7 @@
 //! coupled directions (the wall-parallel directions in the outer part of a boundary-layer
 //! grid, where the wall-normal spacing has grown beyond the tangential one).
 //!
-//! A sweep works in correction form: the residual b − A x of a plane's unknowns (all 27
+//! A sweep works in correction form: the residual b − A x of a plane's unknowns (all
 //! couplings of the level's current operator), the plane's correction from zero by its 2D
 //! cycle, added to x. With current plane solvers this is the same step as solving for the
 //! plane's values; but it also keeps the cycle's fixed point exact when the plane solvers
