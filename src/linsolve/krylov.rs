@@ -56,14 +56,10 @@ pub fn bicgstab(
             dot(r, r).sqrt()
         };
     let r0 = true_residual(apply, x, &mut r, &mut t);
+    if let Some(done) = SolveInfo::start(r0)? {
+        return Ok(done);
+    }
     let mut info = SolveInfo::default();
-    if !r0.is_finite() {
-        return Err(SolveError::Diverged(f64::NAN));
-    }
-    if r0 == 0.0 {
-        info.converged = true;
-        return Ok(info);
-    }
     let mut restart = true;
     let (mut rho_old, mut alpha, mut omega) = (1.0, 1.0, 1.0);
     while info.iterations < ctl.max_iter {

@@ -36,6 +36,48 @@ pub struct SolveInfo {
     pub converged: bool,
 }
 
+impl SolveInfo {
+    /// The start of an iteration at initial residual norm `r0`: [`SolveError::Diverged`] if
+    /// it is not finite, a converged empty result if it is zero, otherwise `None` (iterate).
+    pub(crate) fn start(r0: f64) -> Result<Option<SolveInfo>, SolveError> {
+        if !r0.is_finite() {
+            return Err(SolveError::Diverged(f64::NAN));
+        }
+        Ok((r0 == 0.0).then(|| SolveInfo {
+            converged: true,
+            ..SolveInfo::default()
+        }))
+    }
+}
+
+/// A stationary iteration from residual norm `r0` (plain multigrid cycles, 2D and 3D):
+/// `step()` does one iteration and returns the new residual norm. Stops at
+/// `‖r‖ ≤ rel_tol ‖r₀‖` or after `max_iter` steps (`converged: false`); a relative residual
+/// above [`krylov::DIVERGED`] or NaN is [`SolveError::Diverged`].
+pub(crate) fn stationary(
+    r0: f64,
+    ctl: &SolveControl,
+    mut step: impl FnMut() -> f64,
+) -> Result<SolveInfo, SolveError> {
+    if let Some(done) = SolveInfo::start(r0)? {
+        return Ok(done);
+    }
+    let mut info = SolveInfo::default();
+    while info.iterations < ctl.max_iter {
+        let rel = step() / r0;
+        info.iterations += 1;
+        info.residual_history.push(rel);
+        if rel.is_nan() || rel > krylov::DIVERGED {
+            return Err(SolveError::Diverged(rel));
+        }
+        if rel <= ctl.rel_tol {
+            info.converged = true;
+            break;
+        }
+    }
+    Ok(info)
+}
+
 /// Why a linear solve failed.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum SolveError {

@@ -13,9 +13,6 @@ use crate::linsolve::{krylov, SolveControl, SolveError, SolveInfo};
 use crate::stencil::Stencil9;
 use std::borrow::Cow;
 
-/// Relative residual beyond which an iteration counts as diverged.
-pub(super) const DIVERGED: f64 = krylov::DIVERGED;
-
 /// True if every coupling of `a` that points outside the grid is zero.
 fn is_clipped(a: &Stencil9) -> bool {
     let (nx, ny) = (a.nx(), a.ny());
@@ -88,7 +85,7 @@ pub(super) fn bicgstab_coefs(
         &mut xx,
         ctl,
     );
-    precond.put_workspace(ws);
+    precond.pool.put(ws);
     let info = res?;
     x.copy_from_slice(&xx[pd..pd + n]);
     Ok(info)

@@ -71,7 +71,7 @@ mod tests;
 
 pub use krylov::bicgstab;
 
-use crate::linsolve::{LinearSolver, SolveControl, SolveError, SolveInfo};
+use crate::linsolve::{stationary, LinearSolver, SolveControl, SolveError, SolveInfo};
 use crate::stencil::Stencil9;
 use cycle::Workspace;
 use relax::{pad, residual, Zeroed};
@@ -177,7 +177,7 @@ pub struct MgInfo {
 pub struct Multigrid {
     params: MgParams,
     h: Option<Hierarchy>,
-    pool: Mutex<Vec<Workspace>>,
+    pool: Pool<Workspace>,
 }
 
 /// True if a grid of `n` unknowns is large enough for rayon to pay (2D and 3D multigrid,
@@ -185,6 +185,40 @@ pub struct Multigrid {
 #[inline]
 pub(crate) fn use_par(n: usize) -> bool {
     n >= 1 << 15 && rayon::current_num_threads() > 1
+}
+
+/// Per-solve workspaces kept between solves, so that several right-hand sides can be solved at
+/// once through `&self` (2D and 3D multigrid).
+#[derive(Debug)]
+pub(crate) struct Pool<W>(Mutex<Vec<W>>);
+
+impl<W> Default for Pool<W> {
+    fn default() -> Self {
+        Pool(Mutex::new(Vec::new()))
+    }
+}
+
+impl<W> Pool<W> {
+    /// A kept workspace that `fits`, or `new()`.
+    pub(crate) fn take(&self, fits: impl Fn(&W) -> bool, new: impl FnOnce() -> W) -> W {
+        let mut pool = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        while let Some(ws) = pool.pop() {
+            if fits(&ws) {
+                return ws;
+            }
+        }
+        new()
+    }
+
+    /// Keeps `ws` for a later solve.
+    pub(crate) fn put(&self, ws: W) {
+        self.0.lock().unwrap_or_else(|e| e.into_inner()).push(ws);
+    }
+
+    /// Drops the kept workspaces (the hierarchy changed size).
+    pub(crate) fn clear(&mut self) {
+        self.0.get_mut().unwrap_or_else(|e| e.into_inner()).clear();
+    }
 }
 
 /// A raw pointer that may cross threads; users guarantee disjoint writes.
@@ -207,7 +241,7 @@ impl Multigrid {
         Multigrid {
             params,
             h: None,
-            pool: Mutex::new(Vec::new()),
+            pool: Pool::default(),
         }
     }
 
@@ -270,18 +304,7 @@ impl Multigrid {
     }
 
     fn take_workspace(&self, h: &Hierarchy) -> Workspace {
-        let mut pool = self.pool.lock().unwrap_or_else(|e| e.into_inner());
-        while let Some(ws) = pool.pop() {
-            if ws.fits(h) {
-                return ws;
-            }
-        }
-        Workspace::new(h)
-    }
-
-    fn put_workspace(&self, ws: Workspace) {
-        let mut pool = self.pool.lock().unwrap_or_else(|e| e.into_inner());
-        pool.push(ws);
+        self.pool.take(|ws| ws.fits(h), || Workspace::new(h))
     }
 
     /// `out ≈ A⁻¹ rhs` by one cycle from zero (padded vectors of the fine grid).
@@ -320,34 +343,15 @@ impl Multigrid {
                 Zeroed::None,
             )
             .sqrt();
-            let mut info = SolveInfo::default();
-            if !r0.is_finite() {
-                return Err(SolveError::Diverged(f64::NAN));
-            }
-            if r0 == 0.0 {
-                info.converged = true;
-                return Ok(info);
-            }
-            while info.iterations < ctl.max_iter {
+            let info = stationary(r0, ctl, || {
                 let zeroed = h.cycle(0, h.params.cycle, &mut ws.lv, &mut ws.band);
-                info.iterations += 1;
                 let v = &mut ws.lv[0];
-                let rel = residual(&l0.a, Some(&l0.yop), nx, ny, &v.x, &v.b, &mut v.r, zeroed)
-                    .sqrt()
-                    / r0;
-                info.residual_history.push(rel);
-                if rel.is_nan() || rel > krylov::DIVERGED {
-                    return Err(SolveError::Diverged(rel));
-                }
-                if rel <= ctl.rel_tol {
-                    info.converged = true;
-                    break;
-                }
-            }
+                residual(&l0.a, Some(&l0.yop), nx, ny, &v.x, &v.b, &mut v.r, zeroed).sqrt()
+            })?;
             x.copy_from_slice(&ws.lv[0].x[pd..pd + n]);
             Ok(info)
         })();
-        self.put_workspace(ws);
+        self.pool.put(ws);
         res
     }
 }
@@ -364,10 +368,7 @@ impl LinearSolver for Multigrid {
             .is_some_and(|h| h.fits(nx, ny, &self.params));
         if !fits {
             self.h = None;
-            self.pool
-                .get_mut()
-                .unwrap_or_else(|e| e.into_inner())
-                .clear();
+            self.pool.clear();
             self.h = Some(Hierarchy::new(nx, ny, &self.params));
         }
         let h = self.h.as_mut().expect("hierarchy allocated");

@@ -7,7 +7,7 @@
 use super::coarse::CoarseLu;
 use super::level::Level;
 use super::{transfer, Cycle3, Mg3Params, Smoother3};
-use crate::linsolve::krylov::DIVERGED;
+use crate::linsolve::stationary;
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
 
 #[derive(Debug)]
@@ -154,28 +154,11 @@ pub(super) fn solve_cycles(
     to_padded(l0, x, &mut lv[0].x);
     let v = &mut lv[0];
     let r0 = l0.residual(&v.x, &v.b, &mut v.r).sqrt();
-    let mut info = SolveInfo::default();
-    if !r0.is_finite() {
-        return Err(SolveError::Diverged(f64::NAN));
-    }
-    if r0 == 0.0 {
-        info.converged = true;
-        return Ok(info);
-    }
-    while info.iterations < ctl.max_iter {
+    let info = stationary(r0, ctl, || {
         h.cycle(0, p.cycle, p, lv, scratch);
-        info.iterations += 1;
         let v = &mut lv[0];
-        let rel = l0.residual(&v.x, &v.b, &mut v.r).sqrt() / r0;
-        info.residual_history.push(rel);
-        if rel.is_nan() || rel > DIVERGED {
-            return Err(SolveError::Diverged(rel));
-        }
-        if rel <= ctl.rel_tol {
-            info.converged = true;
-            break;
-        }
-    }
+        l0.residual(&v.x, &v.b, &mut v.r).sqrt()
+    })?;
     from_padded(l0, &lv[0].x, x);
     Ok(info)
 }

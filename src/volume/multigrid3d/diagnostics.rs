@@ -13,83 +13,72 @@ use crate::Grid3;
 #[test]
 #[ignore]
 fn explore() {
-    let n = 49;
+    let faces = Faces::from_grid(&bench_block(49));
+    let variant = |p: Mg3Params| Box::new(Multigrid3::new(p)) as Box<dyn LinearSolver3>;
+    let runs = [
+        ("V(1,1) planes", variant(Mg3Params::default())),
+        (
+            "V(1,0) planes",
+            variant(Mg3Params {
+                npost: 0,
+                ..Default::default()
+            }),
+        ),
+        (
+            "V(1,1) lines",
+            variant(Mg3Params {
+                smoother: Smoother3::Lines,
+                ..Default::default()
+            }),
+        ),
+        ("bicgstab", Box::new(crate::volume::BiCgStabIlu::new())),
+    ];
+    for (name, mut solver) in runs {
+        let t = std::time::Instant::now();
+        let r = grid_volume(
+            &faces,
+            None,
+            ControlKind::Algebraic,
+            solver.as_mut(),
+            &PicardParams::default(),
+            "t",
+            &mut |_, _| {},
+        )
+        .unwrap();
+        let its: usize = r
+            .picard
+            .history
+            .iter()
+            .map(|s| s.linear_iterations.iter().sum::<usize>())
+            .sum();
+        eprintln!(
+            "{name}: {:.2} s, {} steps, {its} linear iterations, converged {}",
+            t.elapsed().as_secs_f64(),
+            r.picard.steps,
+            r.picard.converged
+        );
+    }
+}
+
+/// The warped benchmark block of `examples/bench_volume.rs` at `n³` nodes (clustered to a
+/// first spacing ~1e-3 towards j = 0).
+fn bench_block(n: usize) -> Grid3 {
     let s: Vec<f64> = (0..n)
         .map(|t| ((t as f64 / (n - 1) as f64) * 4.0).sinh() / 4f64.sinh())
         .collect();
     let pi = std::f64::consts::PI;
-    let g = Grid3::from_fn(n, n, n, |i, j, k| {
+    Grid3::from_fn(n, n, n, |i, j, k| {
         let (x, y, z) = (i as f64 / (n - 1) as f64, s[j], k as f64 / (n - 1) as f64);
         [
             x + 0.1 * (pi * y).sin() * z,
             y + 0.15 * (pi * x).sin() * (1.0 - y),
             z + 0.1 * x * y,
         ]
-    });
-    let faces = Faces::from_grid(&g);
-    for rep in 0..1 {
-        for (name, p) in [
-            ("V(1,1) planes", Mg3Params::default()),
-            (
-                "V(1,0) planes",
-                Mg3Params {
-                    npost: 0,
-                    ..Default::default()
-                },
-            ),
-            (
-                "V(1,1) lines",
-                Mg3Params {
-                    smoother: Smoother3::Lines,
-                    ..Default::default()
-                },
-            ),
-        ] {
-            let t = std::time::Instant::now();
-            let r = grid_volume(
-                &faces,
-                None,
-                ControlKind::Algebraic,
-                &mut Multigrid3::new(p),
-                &PicardParams::default(),
-                "t",
-                &mut |_, _| {},
-            )
-            .unwrap();
-            let its: usize = r
-                .picard
-                .history
-                .iter()
-                .map(|s| s.linear_iterations.iter().sum::<usize>())
-                .sum();
-            eprintln!(
-                "{rep} {name}: {:.2} s, {} steps, {its} cycles, converged {}",
-                t.elapsed().as_secs_f64(),
-                r.picard.steps,
-                r.picard.converged
-            );
-        }
-        let t = std::time::Instant::now();
-        let r = grid_volume(
-            &faces,
-            None,
-            ControlKind::Algebraic,
-            &mut crate::volume::BiCgStabIlu::new(),
-            &PicardParams::default(),
-            "t",
-            &mut |_, _| {},
-        )
-        .unwrap();
-        eprintln!(
-            "{rep} bicgstab: {:.2} s, {} steps",
-            t.elapsed().as_secs_f64(),
-            r.picard.steps
-        );
-    }
+    })
 }
 
-/// Times of the setup phases, of cycles and of single sweeps on the 63³ benchmark operator
-/// (`--ignored --nocapture`).
+/// Times of the setup phases, of cycles and of single sweeps on the benchmark operator of
+/// `N³` nodes (environment variable `N`, default 65; `--ignored --nocapture`).
 #[test]
 #[ignore]
 fn setup_phases() {
@@ -97,18 +86,7 @@ fn setup_phases() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(65);
-    let sv: Vec<f64> = (0..n)
-        .map(|t| ((t as f64 / (n - 1) as f64) * 4.0).sinh() / 4f64.sinh())
-        .collect();
-    let pi = std::f64::consts::PI;
-    let g = Grid3::from_fn(n, n, n, |i, j, k| {
-        let (x, y, z) = (i as f64 / (n - 1) as f64, sv[j], k as f64 / (n - 1) as f64);
-        [
-            x + 0.1 * (pi * y).sin() * z,
-            y + 0.15 * (pi * x).sin() * (1.0 - y),
-            z + 0.1 * x * y,
-        ]
-    });
+    let g = bench_block(n);
     let a = picard_operator(&g, true);
     let t = std::time::Instant::now();
     let mut lev = Level::new(a.dims());

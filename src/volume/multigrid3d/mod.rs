@@ -60,11 +60,10 @@ mod transfer;
 use super::solver3d::LinearSolver3;
 use super::stencil19::Stencil19;
 use crate::linsolve::{SolveControl, SolveError, SolveInfo};
-use crate::multigrid::{use_par, SharedPtr};
+use crate::multigrid::{use_par, Pool, SharedPtr};
 use coarse::CoarseLu;
 use cycle::{from_padded, solve_cycles, to_padded, Hierarchy, Workspace};
 use level::Level;
-use std::sync::Mutex;
 
 /// Cycle type.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -137,7 +136,7 @@ pub struct Mg3Info {
 pub struct Multigrid3 {
     params: Mg3Params,
     h: Option<Hierarchy>,
-    pool: Mutex<Vec<Workspace>>,
+    pool: Pool<Workspace>,
 }
 
 /// Level sizes for fine size `dims`.
@@ -183,20 +182,6 @@ impl Multigrid3 {
         })
     }
 
-    fn take_workspace(&self, h: &Hierarchy) -> Workspace {
-        let mut pool = self.pool.lock().unwrap_or_else(|e| e.into_inner());
-        while let Some(ws) = pool.pop() {
-            if ws.fits(h) {
-                return ws;
-            }
-        }
-        Workspace::new(h)
-    }
-
-    fn put_workspace(&self, ws: Workspace) {
-        self.pool.lock().unwrap_or_else(|e| e.into_inner()).push(ws);
-    }
-
     fn setup_values(&mut self, a: &Stencil19) -> Result<(), SolveError> {
         let dims = level_dims(a.dims(), &self.params);
         let reuse = self.h.as_ref().is_some_and(|h| {
@@ -205,10 +190,7 @@ impl Multigrid3 {
         let mut levels = match self.h.take() {
             Some(h) if reuse => h.levels,
             _ => {
-                self.pool
-                    .get_mut()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .clear();
+                self.pool.clear();
                 dims.iter().map(|&d| Level::new(d)).collect()
             }
         };
@@ -303,7 +285,7 @@ impl LinearSolver3 for Multigrid3 {
             )));
         }
         let p = &self.params;
-        let mut ws = self.take_workspace(h);
+        let mut ws = self.pool.take(|ws| ws.fits(h), || Workspace::new(h));
         let res = if p.accelerate {
             let mut xq = vec![0.0; l0.padded_len()];
             let Workspace { lv, scratch } = &mut ws;
@@ -321,7 +303,7 @@ impl LinearSolver3 for Multigrid3 {
         } else {
             solve_cycles(h, p, &mut ws, b, x, ctl)
         };
-        self.put_workspace(ws);
+        self.pool.put(ws);
         res
     }
 
