@@ -4,6 +4,8 @@
 //! `cargo run --release --example bench_grid -- [--quick] [--sizes 257,513] [--only curved|bl-1e-5]
 //! [--no-plain] [--history]`
 //!
+//! `--write DIR` writes every computed grid (or solution) as raw f64 for `scripts/same-grids.sh`.
+//!
 //! Cases: the curved quadrilateral of `examples/curved.toml` and the boundary-layer block of
 //! `examples/boundary_layer.toml` with wall spacing 1e-5 (`bl-1e-5`; and `bl-ar1e4`, with
 //! wall-tangential spacings of 0.15 at both ends: aspect ratios ≥ 1e4), at 257², 513², 1025²
@@ -18,6 +20,8 @@
 //! - `direct`: plain Picard with the sparse LU (N ≤ 513), the time ratio to `mg+nested`, and
 //!   the largest difference between the two grids relative to the diameter.
 
+#[path = "common/dump.rs"]
+mod dump;
 use ellipgrid::boundary::Boundary2;
 use ellipgrid::case::LoadedCase;
 use ellipgrid::domain::{control_for, ControlKind};
@@ -161,6 +165,8 @@ fn whole(
             );
         }
     }
+    let c = r.grid.coords();
+    dump::dump(&format!("grid_{label}_{}_{what}", b.ni()), &[&c[0], &c[1]]);
     (r.grid, info)
 }
 

@@ -2,12 +2,16 @@
 //!
 //! `cargo run --release --example bench_multigrid -- [--quick]`
 //!
+//! `--write DIR` writes every computed grid (or solution) as raw f64 for `scripts/same-grids.sh`.
+//!
 //! For 5- and 9-point Poisson on uniform squares of N² nodes (N − 2 unknowns per direction)
 //! and a boundary-layer grid Laplacian (first spacing 1e-5 at the wall, aspect ratio ≈ 1e4 or
 //! more): cycles to reduce the residual by 1e-10, mean convergence factor per cycle, setup and
 //! solve seconds (the fastest of repeated solves), ns per unknown per cycle, and faer's sparse
 //! LU for N ≤ 513.
 
+#[path = "common/dump.rs"]
+mod dump;
 use ellipgrid::linsolve::direct::DirectLu;
 use ellipgrid::linsolve::{LinearSolver, SolveControl};
 use ellipgrid::multigrid::{Cycle, MgParams, Multigrid};
@@ -123,6 +127,13 @@ fn run(label: &str, nodes: usize, a: &Stencil9, params: &MgParams, direct: bool)
         reps += 1;
     }
     let info = info.expect("solved");
+    dump::dump(
+        &format!(
+            "mg_{label}_{nodes}_{:?}_{}",
+            params.cycle, params.accelerate
+        ),
+        &[&x],
+    );
     let k = info.iterations.max(1);
     let factor = info
         .residual_history

@@ -3,7 +3,11 @@
 //! the whole surface pipeline for a 1025² grid on the wing–pylon net, by step.
 //!
 //! `cargo run --release --example bench_surface [-- --quick]`
+//!
+//! `--write DIR` writes every computed grid (or solution) as raw f64 for `scripts/same-grids.sh`.
 
+#[path = "common/dump.rs"]
+mod dump;
 use ellipgrid::grid::Edge;
 use ellipgrid::inversion::{bilinear_inverse, QuadMesh};
 use ellipgrid::linsolve::by_name;
@@ -91,6 +95,11 @@ fn main() {
         let bnd = t4.elapsed().as_secs_f64();
         let r = grid_surface(surf.as_ref(), &uv, solver.as_mut(), "bench").unwrap();
         let all = t4.elapsed().as_secs_f64();
+        let c = r.grid.coords();
+        dump::dump(
+            &format!("surface_{nn}_{}", solver.name()),
+            &[&c[0], &c[1], &c[2]],
+        );
         let tm = &r.times;
         println!(
             "surface pipeline {nn}² ({}): boundary {:.3} s, initial grid {:.3} s, Laplace–Beltrami {:.3} s, target {:.3} s, inversion {:.3} s, total {:.3} s",

@@ -4,6 +4,8 @@
 //! `cargo run --release --example bench_volume -- 33 65 129 [--solver multigrid|bicgstab|both]
 //! [--modes]`
 //!
+//! `--write DIR` writes every computed grid (or solution) as raw f64 for `scripts/same-grids.sh`.
+//!
 //! Per size and solver (default both): the first Picard operator solved from zero to 1e-10
 //! (iterations, mean factor, setup and solve seconds, ns/unknown/iteration), and the whole
 //! `grid_volume` with default parameters (nested iteration, inexact Picard) side by side:
@@ -11,6 +13,8 @@
 //! iterations (cycles) per coordinate and largest final linear residual. `--modes`: Bi-CGSTAB/ILU(0) with exact linear
 //! solves, inexact Picard, and nested iteration (slow: exact solves take ~50 s at 65³).
 
+#[path = "common/dump.rs"]
+mod dump;
 use ellipgrid::domain::ControlKind;
 use ellipgrid::linsolve::SolveControl;
 use ellipgrid::poisson2d::PicardParams;
@@ -109,6 +113,11 @@ fn whole(n: usize, faces: &Faces, solver: &mut dyn LinearSolver3) {
         .map(|s| s.to_string())
         .collect();
     steps.push(r.picard.steps.to_string());
+    let c = r.grid.coords();
+    dump::dump(
+        &format!("volume_{n}_{}", r.picard.linear_solver),
+        &[&c[0], &c[1], &c[2]],
+    );
     let q = quality3d(&r.grid);
     println!(
         "{n}^3 grid_volume, {:<14} {secs:6.2} s, {:6.1} WU, Picard steps {} (converged {}), \
