@@ -51,7 +51,12 @@ produce() {
   done
 }
 
-produce "$tree" "$out/before"
+# the outputs of REV are kept in OUT/before and reused when OUT is given again
+sha="$(git -C "$top" rev-parse "$rev")"
+if [ "$(cat "$out/before/.rev" 2>/dev/null)" != "$sha" ]; then
+  produce "$tree" "$out/before"
+  echo "$sha" >"$out/before/.rev"
+fi
 produce "$top" "$out/after"
 fail=0
 count=0
@@ -64,7 +69,7 @@ while IFS= read -r f; do
     echo "differs: $f"
     fail=1
   fi
-done < <(cd "$out/before" && find . -type f | sort)
+done < <(cd "$out/before" && find . -type f ! -name .rev | sort)
 extra=$(cd "$out/after" && find . -type f | wc -l)
 if [ "$extra" -ne "$count" ]; then
   echo "file counts differ: $count before, $extra after"
