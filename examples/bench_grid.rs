@@ -15,23 +15,26 @@
 //!   mean factor per cycle, setup (first setup, allocation included) and solve seconds, ns
 //!   per unknown per cycle;
 //! - `mg+nested`: the whole generation (tolerance 1e-10) by nested iteration with multigrid:
-//!   Picard steps per level (coarsest first), seconds, work units (`ellipgrid::nested`);
+//!   Picard steps per level (coarsest first), seconds, work units (`ellipgrid::elliptic::nested`);
 //! - `mg plain`: plain Picard with multigrid from the transfinite grid;
 //! - `direct`: plain Picard with the sparse LU (N ≤ 513), the time ratio to `mg+nested`, and
 //!   the largest difference between the two grids relative to the diameter.
 
 #[path = "common/dump.rs"]
 mod dump;
-use ellipgrid::boundary::Boundary2;
+use ellipgrid::algebraic::control2d::control_for;
+use ellipgrid::algebraic::ControlKind;
 use ellipgrid::case::LoadedCase;
-use ellipgrid::domain::{control_for, ControlKind};
+use ellipgrid::elliptic::nested::{grid_block_nested, NestedInfo};
+use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::elliptic::poisson2d::assemble;
+use ellipgrid::grid::boundary::Boundary2;
 use ellipgrid::grid::Grid2;
-use ellipgrid::linsolve::direct::DirectLu;
-use ellipgrid::linsolve::{LinearSolver, MultigridSafe, SolveControl};
-use ellipgrid::multigrid::{bicgstab, MgParams, Multigrid};
-use ellipgrid::nested::{grid_block_nested, NestedInfo};
-use ellipgrid::poisson2d::{assemble, PicardParams};
-use ellipgrid::stencil::Stencil9;
+use ellipgrid::solve::direct::DirectLu;
+use ellipgrid::solve::multigrid::MultigridSafe;
+use ellipgrid::solve::multigrid::{bicgstab, MgParams, Multigrid};
+use ellipgrid::solve::stencil9::Stencil9;
+use ellipgrid::solve::{LinearSolver, SolveControl};
 use std::path::Path;
 use std::time::Instant;
 

@@ -12,10 +12,10 @@
 
 #[path = "common/dump.rs"]
 mod dump;
-use ellipgrid::linsolve::direct::DirectLu;
-use ellipgrid::linsolve::{LinearSolver, SolveControl};
-use ellipgrid::multigrid::{Cycle, MgParams, Multigrid};
-use ellipgrid::stencil::Stencil9;
+use ellipgrid::solve::direct::DirectLu;
+use ellipgrid::solve::multigrid::{Cycle, MgParams, Multigrid};
+use ellipgrid::solve::stencil9::Stencil9;
+use ellipgrid::solve::{LinearSolver, SolveControl};
 use std::time::Instant;
 
 fn constant(n: usize, m: [f64; 9]) -> Stencil9 {

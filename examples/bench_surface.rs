@@ -9,9 +9,9 @@
 #[path = "common/dump.rs"]
 mod dump;
 use ellipgrid::grid::Edge;
-use ellipgrid::inversion::{bilinear_inverse, QuadMesh};
-use ellipgrid::linsolve::by_name;
-use ellipgrid::surfgrid::{edge_params, grid_surface};
+use ellipgrid::solve::select::by_name;
+use ellipgrid::surface::inversion::{bilinear_inverse, QuadMesh};
+use ellipgrid::surface::pipeline::{edge_params, grid_surface};
 use ellipgrid_geometry::uniform;
 use std::time::Instant;
 

@@ -15,14 +15,18 @@
 
 #[path = "common/dump.rs"]
 mod dump;
-use ellipgrid::domain::ControlKind;
-use ellipgrid::linsolve::SolveControl;
-use ellipgrid::poisson2d::PicardParams;
-use ellipgrid::volume::picard3d::{assemble, gather};
-use ellipgrid::volume::{
-    control_for, grid_volume, quality3d, transfinite, BiCgStabIlu, Faces, LinearSolver3,
-    Multigrid3, Stencil19,
-};
+use ellipgrid::algebraic::control3d::control_for;
+use ellipgrid::algebraic::ControlKind;
+use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::elliptic::poisson3d::{assemble, gather};
+use ellipgrid::elliptic::volume::grid_volume;
+use ellipgrid::grid::faces::{transfinite, Faces};
+use ellipgrid::quality::quality3d::quality3d;
+use ellipgrid::solve::multigrid3d::Multigrid3;
+use ellipgrid::solve::solver3d::BiCgStabIlu;
+use ellipgrid::solve::stencil19::Stencil19;
+use ellipgrid::solve::LinearSolver3;
+use ellipgrid::solve::SolveControl;
 use ellipgrid::Grid3;
 use std::time::Instant;
 
@@ -180,13 +184,13 @@ fn main() {
     }
 }
 
-/// The whole generation with Bi-CGSTAB/ILU(0) three ways (`ellipgrid::volume::nested3d`):
+/// The whole generation with Bi-CGSTAB/ILU(0) three ways (`ellipgrid::elliptic::nested3d`):
 /// plain Picard with every linear solve to 1e-10 (`exact`), plain inexact Picard (`inexact`,
 /// the forcing term of `PicardParams::linear_forcing`), and nested iteration with inexact
 /// Picard (`nested`): Picard steps per level (coarsest first; the last is the finest grid),
 /// seconds, work units (one WU = one assembly + residual of [86] on the finest grid).
 fn nested_lines(faces: &Faces) {
-    use ellipgrid::volume::nested3d::grid_volume_nested;
+    use ellipgrid::elliptic::nested3d::grid_volume_nested;
     let n = faces.dims()[0];
     let modes = [
         ("exact", Some(false), 0.0),

@@ -13,7 +13,7 @@ mod shape;
 
 use ellipgrid::io::plot3d::{write_plot3d, Plot3dFormat};
 use ellipgrid::io::Block;
-use ellipgrid::volume::quality3d::quality3d;
+use ellipgrid::quality::quality3d::quality3d;
 use ellipgrid::Error;
 
 fn main() -> ellipgrid::Result<()> {

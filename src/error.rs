@@ -36,7 +36,7 @@ pub enum Error {
     #[error("{place}: {source}")]
     Solve {
         place: String,
-        source: crate::linsolve::SolveError,
+        source: crate::solve::SolveError,
     },
 
     /// The generated grid folds (non-positive Jacobian at a cell corner).

@@ -1,13 +1,14 @@
 //! The Section 2 method on planar domains, through the library: exact discrete solutions,
 //! independence of the start grid, second-order convergence, boundary layers.
 
-use ellipgrid::boundary::Boundary2;
+use ellipgrid::algebraic::transform::transfinite;
+use ellipgrid::algebraic::ControlKind;
 use ellipgrid::case::LoadedCase;
-use ellipgrid::domain::{grid_block, ControlKind};
-use ellipgrid::linsolve::direct::DirectLu;
-use ellipgrid::poisson2d::PicardParams;
+use ellipgrid::elliptic::domain::grid_block;
+use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::grid::boundary::Boundary2;
 use ellipgrid::quality::quality2d;
-use ellipgrid::transform::transfinite;
+use ellipgrid::solve::direct::DirectLu;
 use ellipgrid::{Edge, Grid2};
 use std::path::Path;
 

@@ -2,11 +2,12 @@
 
 mod common;
 use common::*;
-use ellipgrid::boundary::Boundary2;
-use ellipgrid::domain::{grid_block, ControlKind};
-use ellipgrid::linsolve::direct::DirectLu;
-use ellipgrid::poisson2d::PicardParams;
+use ellipgrid::algebraic::ControlKind;
+use ellipgrid::elliptic::domain::grid_block;
+use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::grid::boundary::Boundary2;
 use ellipgrid::quality::quality_surface;
+use ellipgrid::solve::direct::DirectLu;
 use ellipgrid::Grid2;
 use std::fs;
 

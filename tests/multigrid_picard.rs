@@ -1,14 +1,17 @@
 //! The multigrid solver inside the Picard iteration of [24], and nested iteration
-//! (`ellipgrid::nested`): the grids equal those of the direct solver and of plain Picard to
+//! (`ellipgrid::elliptic::nested`): the grids equal those of the direct solver and of plain Picard to
 //! the Picard tolerance, and the finest grid needs few Picard steps.
 
-use ellipgrid::boundary::Boundary2;
+use ellipgrid::algebraic::ControlKind;
 use ellipgrid::case::{LoadedCase, SolverSpec};
-use ellipgrid::domain::{grid_block, ControlKind};
-use ellipgrid::linsolve::{by_name, direct::DirectLu, LinearSolver, MultigridSafe};
-use ellipgrid::multigrid::MgParams;
-use ellipgrid::nested::{grid_block_nested, level_sizes};
-use ellipgrid::poisson2d::PicardParams;
+use ellipgrid::elliptic::domain::grid_block;
+use ellipgrid::elliptic::nested::{grid_block_nested, level_sizes};
+use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::grid::boundary::Boundary2;
+use ellipgrid::solve::multigrid::MgParams;
+use ellipgrid::solve::multigrid::MultigridSafe;
+use ellipgrid::solve::select::by_name;
+use ellipgrid::solve::{direct::DirectLu, LinearSolver};
 use ellipgrid::Grid2;
 use std::path::Path;
 
@@ -170,11 +173,11 @@ fn even_sizes_are_not_coarsened() {
 /// most 0.15 per cycle (measured 0.03–0.05).
 #[test]
 fn default_cycles_converge_on_boundary_layer_picard_systems_at_1025() {
-    use ellipgrid::domain::control_for;
-    use ellipgrid::linsolve::SolveControl;
-    use ellipgrid::multigrid::Multigrid;
-    use ellipgrid::poisson2d::assemble;
-    use ellipgrid::stencil::Stencil9;
+    use ellipgrid::algebraic::control2d::control_for;
+    use ellipgrid::elliptic::poisson2d::assemble;
+    use ellipgrid::solve::multigrid::Multigrid;
+    use ellipgrid::solve::stencil9::Stencil9;
+    use ellipgrid::solve::SolveControl;
     type Edit = fn(String) -> String;
     let cases: [(&str, Edit); 2] = [
         ("aspect 2e3", |s| s.replace("first = 1e-4", "first = 1e-5")),

@@ -3,12 +3,13 @@
 
 mod common;
 use common::*;
-use ellipgrid::boundary::Boundary2;
-use ellipgrid::domain::{grid_block, ControlKind};
-use ellipgrid::linsolve::direct::DirectLu;
-use ellipgrid::orthogonal::orthogonal_steps;
-use ellipgrid::poisson2d::PicardParams;
+use ellipgrid::algebraic::ControlKind;
+use ellipgrid::elliptic::domain::grid_block;
+use ellipgrid::elliptic::orthogonal::orthogonal_steps;
+use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::grid::boundary::Boundary2;
 use ellipgrid::quality::{quality2d, quality_surface};
+use ellipgrid::solve::direct::DirectLu;
 use ellipgrid::{Edge, Grid2};
 use std::f64::consts::PI;
 use std::fs;
@@ -176,7 +177,7 @@ fn orthogonal_at_one_edge_leaves_the_other_edges_alone() {
         );
     }
     // Only s_E3 changed: the other edge functions are the arclength ones.
-    let arc = ellipgrid::arclength::EdgeFunctions::arclength(&b);
+    let arc = ellipgrid::grid::arclength::EdgeFunctions::arclength(&b);
     assert_eq!(
         (&r.edge_functions.t_e1, &r.edge_functions.t_e2),
         (&arc.t_e1, &arc.t_e2)

@@ -2,10 +2,10 @@
 
 mod common;
 use common::*;
-use ellipgrid::boundary::Boundary2;
+use ellipgrid::algebraic::transform::transfinite;
+use ellipgrid::grid::boundary::Boundary2;
 use ellipgrid::io::plot3d::{read_plot3d, write_plot3d, Encoding, Plot3dFormat};
 use ellipgrid::io::Block;
-use ellipgrid::transform::transfinite;
 use ellipgrid::{Grid2, Grid3};
 use std::fs;
 use std::path::Path;

@@ -4,7 +4,7 @@
 
 use ellipgrid::cad::{self, grid_patch, read_step_faces, write_step_surface};
 use ellipgrid::case::DistributionSpec;
-use ellipgrid::linsolve::direct::DirectLu;
+use ellipgrid::solve::direct::DirectLu;
 use ellipgrid::Grid2;
 use ellipgrid_geometry::{BSplineSurf, HermiteSurface, Surface, Vec3};
 use std::path::Path;

@@ -2,8 +2,8 @@
 //! parametrization, agreement with Section 2, parametrized CAD-like surfaces.
 
 use ellipgrid::grid::Edge;
-use ellipgrid::linsolve::direct::DirectLu;
-use ellipgrid::surfgrid::{edge_params, grid_surface};
+use ellipgrid::solve::direct::DirectLu;
+use ellipgrid::surface::pipeline::{edge_params, grid_surface};
 use ellipgrid::Grid2;
 use ellipgrid_geometry::{uniform, Curve, HermiteSurface, Surface, SurfacePoint, TanhBump, Vec3};
 
@@ -189,9 +189,10 @@ impl Surface for Transfinite {
 
 #[test]
 fn section_4_and_section_2_give_the_same_planar_grid() {
+    use ellipgrid::algebraic::ControlKind;
     use ellipgrid::case::LoadedCase;
-    use ellipgrid::domain::{grid_block, ControlKind};
-    use ellipgrid::poisson2d::PicardParams;
+    use ellipgrid::elliptic::domain::grid_block;
+    use ellipgrid::elliptic::picard::PicardParams;
     use ellipgrid_geometry::{Arc, Line, Spline};
     // The curved quadrilateral of examples/curved.toml.
     let v = |x: f64, y: f64| Vec3::new(x, y, 0.0);
@@ -287,7 +288,7 @@ fn wing_pylon_grid_is_fold_free_and_follows_the_boundary_not_the_net() {
             Edge::E3 => &case.case.blocks[0].e3,
             Edge::E4 => &case.case.blocks[0].e4,
         };
-        let len = ellipgrid::surfgrid::edge_length(&fine, e);
+        let len = ellipgrid::surface::pipeline::edge_length(&fine, e);
         spec.distribution.sample(n, len, "wp").unwrap()
     };
     let uv2 = Edge::ALL.map(|e| edge_params(&fine, e, &sig(e)));
@@ -317,7 +318,7 @@ fn wing_pylon_grid_is_fold_free_and_follows_the_boundary_not_the_net() {
 #[test]
 fn tanh_surface_orthogonal_at_chosen_edges_in_the_tangent_plane() {
     use ellipgrid::quality::quality_surface;
-    use ellipgrid::surfgrid::grid_surface_orthogonal;
+    use ellipgrid::surface::pipeline::grid_surface_orthogonal;
     let bump = TanhBump::default();
     let n = 65;
     // unequal opposite distributions, so that the plain grid leaves the edges at an angle

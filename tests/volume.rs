@@ -3,14 +3,16 @@
 
 mod common;
 use common::*;
+use ellipgrid::algebraic::ControlKind;
+use ellipgrid::case::volume::volume_faces;
 use ellipgrid::case::LoadedCase;
-use ellipgrid::domain::ControlKind;
+use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::elliptic::volume::grid_volume;
+use ellipgrid::grid::faces::{transfinite, Faces};
 use ellipgrid::io::plot3d::{read_plot3d, write_plot3d, Plot3dFormat};
 use ellipgrid::io::Block;
-use ellipgrid::linsolve::SolveError;
-use ellipgrid::poisson2d::PicardParams;
-use ellipgrid::volume::case3d::volume_faces;
-use ellipgrid::volume::{grid_volume, transfinite, BiCgStabIlu, Faces};
+use ellipgrid::solve::solver3d::BiCgStabIlu;
+use ellipgrid::solve::SolveError;
 use ellipgrid::Grid3;
 use std::fs;
 use std::path::Path;
@@ -67,14 +69,14 @@ fn the_grid_does_not_depend_on_the_start_grid() {
             }
         }
     }
-    assert!(ellipgrid::volume::quality3d(&s).is_folded());
+    assert!(ellipgrid::quality::quality3d::quality3d(&s).is_folded());
     let b = solve(&faces, Some(s));
     for c in 0..3 {
         for (u, v) in a.coord(c).iter().zip(b.coord(c)) {
             assert!((u - v).abs() < 1e-9, "{u} vs {v}");
         }
     }
-    assert!(!ellipgrid::volume::quality3d(&a).is_folded());
+    assert!(!ellipgrid::quality::quality3d::quality3d(&a).is_folded());
 }
 
 /// rms difference of two grids at the nodes of the coarser (every second node of the finer).
@@ -236,7 +238,7 @@ fn faces_that_do_not_meet_exit_2_naming_them() {
 /// the heights next to the leading edge were 42 % of the target.
 #[test]
 fn wing_block_holds_the_prescribed_wall_spacing_fold_free() {
-    use ellipgrid::volume::case3d::generate_volume;
+    use ellipgrid::job::volume::generate_volume;
     let path = root().join("examples/wing_m6_upper.toml");
     let mut text = fs::read_to_string(&path).unwrap();
     for (key, from, to) in [("ni", 65, 41), ("nj", 49, 33), ("nk", 25, 13)] {
@@ -277,8 +279,8 @@ fn wing_block_holds_the_prescribed_wall_spacing_fold_free() {
     // mean 25°) and the wall-normal distance of the first off-wall node is within 20 % of the
     // target (measured 1.000 … 1.011, without it down to 0.55). `WING_EXTRA` adds keys to the
     // case (`wall_orthogonal = false` prints those numbers and fails).
-    let w = ellipgrid::volume::wall::parse_face("F3").unwrap();
-    let hn = ellipgrid::volume::wall_normal::normal_heights(&g, w);
+    let w = ellipgrid::grid::faces::parse_face("F3").unwrap();
+    let hn = ellipgrid::elliptic::wall_normal::normal_heights(&g, w);
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
     for k in 1..nk - 1 {
         let (le, te) = (g.point(0, 0, k), g.point(ni - 1, 0, k));
@@ -351,8 +353,8 @@ fn nested_solve(
     nested: bool,
     forcing: f64,
 ) -> (
-    ellipgrid::volume::VolumeResult,
-    ellipgrid::volume::nested3d::NestedInfo3,
+    ellipgrid::elliptic::picard::VolumeResult,
+    ellipgrid::elliptic::nested3d::NestedInfo3,
 ) {
     let params = PicardParams {
         tolerance: 1e-12,
@@ -360,7 +362,7 @@ fn nested_solve(
         linear_forcing: forcing,
         ..PicardParams::default()
     };
-    let (r, info) = ellipgrid::volume::nested3d::grid_volume_nested(
+    let (r, info) = ellipgrid::elliptic::nested3d::grid_volume_nested(
         faces,
         ControlKind::Algebraic,
         &mut BiCgStabIlu::new(),
@@ -401,7 +403,7 @@ fn nested_iteration_gives_the_plain_picard_grid_and_reports_work_units() {
             assert!((wu - i.work_units).abs() < 1e-12 * wu);
         }
         // The coarse levels predict the fine grid: a much smaller first fine update.
-        let first = |r: &ellipgrid::volume::VolumeResult| r.picard.history[0].update;
+        let first = |r: &ellipgrid::elliptic::picard::VolumeResult| r.picard.history[0].update;
         eprintln!(
             "first updates: plain {:.2e}, nested {:.2e}",
             first(&plain),
@@ -420,7 +422,7 @@ fn inexact_picard_has_the_fixed_point_of_exact_picard() {
     let diff = max_difference(&exact.grid, &inexact.grid);
     eprintln!("inexact - exact {diff:.2e}");
     assert!(diff < 1e-9, "inexact differs by {diff:.2e}");
-    let its = |r: &ellipgrid::volume::VolumeResult| -> usize {
+    let its = |r: &ellipgrid::elliptic::picard::VolumeResult| -> usize {
         r.picard
             .history
             .iter()
@@ -467,8 +469,8 @@ struct FailsWhenSmall {
     min: usize,
 }
 
-impl ellipgrid::volume::LinearSolver3 for FailsWhenSmall {
-    fn setup(&mut self, a: &ellipgrid::volume::Stencil19) -> Result<(), SolveError> {
+impl ellipgrid::solve::LinearSolver3 for FailsWhenSmall {
+    fn setup(&mut self, a: &ellipgrid::solve::stencil19::Stencil19) -> Result<(), SolveError> {
         if a.len() < self.min {
             return Err(SolveError::Singular("too small".into()));
         }
@@ -479,8 +481,8 @@ impl ellipgrid::volume::LinearSolver3 for FailsWhenSmall {
         &self,
         b: &[f64],
         x: &mut [f64],
-        ctl: &ellipgrid::linsolve::SolveControl,
-    ) -> Result<ellipgrid::linsolve::SolveInfo, SolveError> {
+        ctl: &ellipgrid::solve::SolveControl,
+    ) -> Result<ellipgrid::solve::SolveInfo, SolveError> {
         self.inner.solve(b, x, ctl)
     }
 
@@ -503,7 +505,7 @@ fn a_failing_coarse_level_is_skipped() {
         nested: Some(true),
         ..PicardParams::default()
     };
-    let (r, info) = ellipgrid::volume::nested3d::grid_volume_nested(
+    let (r, info) = ellipgrid::elliptic::nested3d::grid_volume_nested(
         &faces,
         ControlKind::Algebraic,
         &mut solver,

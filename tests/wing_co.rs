@@ -6,7 +6,7 @@
 //! along the flat block edge E7 (the wing plane ahead of the leading edge, F1, meets the wing
 //! plane beyond the tip, F6, at 180°, inherent to the C–O topology) are counted apart as
 //! flat-edge cells: every non-positive corner of such a cell sits on a block edge whose two
-//! faces are coplanar within 1° (`ellipgrid::volume::quality3d::metrics::flat_edge_cell`).
+//! faces are coplanar within 1° (`ellipgrid::quality::quality3d::metrics::flat_edge_cell`).
 //! The tests require those to be exactly the nj − 1 cells along E7 and nothing else.
 
 mod common;
@@ -18,7 +18,7 @@ mod shape;
 use ellipgrid::case::LoadedCase;
 use ellipgrid::io::plot3d::{read_plot3d, write_plot3d, Plot3dFormat};
 use ellipgrid::io::Block;
-use ellipgrid::volume::case3d::generate_volume;
+use ellipgrid::job::volume::generate_volume;
 use ellipgrid::Grid3;
 use std::fs;
 use std::path::Path;
@@ -60,12 +60,12 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 /// The grid of the case at reduced size, with its report.
-fn small_grid() -> (Grid3, ellipgrid::volume::case3d::VolumeReport) {
+fn small_grid() -> (Grid3, ellipgrid::job::volume::VolumeReport) {
     small_grid_with("")
 }
 
 /// As [`small_grid`], with `extra` keys added to the `[[volume]]` table.
-fn small_grid_with(extra: &str) -> (Grid3, ellipgrid::volume::case3d::VolumeReport) {
+fn small_grid_with(extra: &str) -> (Grid3, ellipgrid::job::volume::VolumeReport) {
     let d = tempfile::tempdir().unwrap();
     let path = small_case(d.path(), SMALL);
     let text = fs::read_to_string(&path).unwrap();
@@ -134,8 +134,8 @@ fn co_block_lines_leave_the_wall_along_its_normal() {
     let (g, rep) = small_grid_with(&extra);
     let q = &rep.quality;
     let [ni, nj, nk] = SMALL;
-    let w = ellipgrid::volume::wall::parse_face("F3").unwrap();
-    let hn = ellipgrid::volume::wall_normal::normal_heights(&g, w);
+    let w = ellipgrid::grid::faces::parse_face("F3").unwrap();
+    let hn = ellipgrid::elliptic::wall_normal::normal_heights(&g, w);
     let (mut lo, mut hi, mut sum) = (f64::INFINITY, 0.0f64, 0.0);
     let mut worst = [0usize; 2];
     for k in 1..nk - 1 {

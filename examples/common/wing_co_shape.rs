@@ -365,7 +365,7 @@ pub fn algebraic_block(ni: usize, nj: usize, nk: usize) -> Grid3 {
     g
 }
 
-/// The six faces F1 … F6 of the block, in the face orientation of `ellipgrid::volume::faces`
+/// The six faces F1 … F6 of the block, in the face orientation of `ellipgrid::grid::faces`
 /// (F1/F2 (j, k), F3/F4 (i, k), F5/F6 (i, j), first index fastest).
 pub fn faces(ni: usize, nj: usize, nk: usize) -> [Grid2<3>; 6] {
     let g = algebraic_block(ni, nj, nk);

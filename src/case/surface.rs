@@ -1,42 +1,14 @@
 //! Surface blocks of a case file (`kind = "surface"`, Section 4): the surface, and the (u, v)
 //! of the boundary nodes distributed by 3D arclength along the surface's own edges.
 
-use super::{point, LoadedCase};
+use crate::case::spec::SurfaceSpec;
+use crate::case::{point, LoadedCase};
 use crate::grid::Edge;
 use crate::io::{plot3d, Block};
-use crate::surfgrid::{edge_length, edge_params};
+use crate::surface::pipeline::{edge_length, edge_params};
 use crate::{Error, Result};
 use ellipgrid_geometry::{self as geo, Surface, Vec3};
-use serde::Deserialize;
-use std::path::{Path, PathBuf};
-
-/// The surface of a `kind = "surface"` block. Its parameter square's sides are the block's
-/// edges: E1 ↔ u = 0, E2 ↔ u = 1, E3 ↔ v = 0, E4 ↔ v = 1.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
-pub enum SurfaceSpec {
-    /// A bicubic Hermite surface through a control net: read from a Plot3D file (a surface
-    /// block, ni × nj × 1; `block` is 1-based, default 1), or given inline as `ni`, `nj` and
-    /// `points` (i fastest). Control points sit at uniform parameter values.
-    HermiteNet {
-        file: Option<PathBuf>,
-        #[serde(default)]
-        block: Option<usize>,
-        ni: Option<usize>,
-        nj: Option<usize>,
-        points: Option<Vec<Vec<f64>>>,
-    },
-    /// The plane x = origin + u du + v dv.
-    Plane {
-        origin: Vec<f64>,
-        du: Vec<f64>,
-        dv: Vec<f64>,
-    },
-    /// The paper's z = (1/8) tanh(15 (1/4 − (x−1)² − (y−1)²)) over (x, y) ∈ [0, 2]².
-    TanhBump,
-    /// Scherk's minimal surface z = ln(cos y / cos x) over [−a, a]².
-    Scherk { half_width: f64 },
-}
+use std::path::Path;
 
 impl LoadedCase {
     /// The surface of block k, boxed.
@@ -140,8 +112,8 @@ impl LoadedCase {
                     let sigma = spec.distribution.sample(n, len, &at)?;
                     edge_params(surface.as_ref(), e, &sigma)
                 }
-                (Some(super::CurveSpec::Nodes { points }), false)
-                    if matches!(spec.distribution, super::DistributionSpec::Uniform) =>
+                (Some(crate::case::CurveSpec::Nodes { points }), false)
+                    if matches!(spec.distribution, crate::case::DistributionSpec::Uniform) =>
                 {
                     project_nodes(surface.as_ref(), e, points, n, &at)?
                 }
@@ -178,7 +150,7 @@ fn project_nodes(
             ),
         ));
     }
-    let side = crate::surfgrid::surface_edge(e);
+    let side = crate::surface::pipeline::surface_edge(e);
     let len = edge_length(surface, e);
     let mut out = Vec::with_capacity(n);
     let mut prev = 0.0f64;

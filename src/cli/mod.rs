@@ -8,13 +8,13 @@ mod step;
 
 use clap::{Parser, Subcommand};
 use ellipgrid::case::LoadedCase;
+use ellipgrid::elliptic::picard::PicardParams;
 use ellipgrid::io::plot3d;
 use ellipgrid::io::Block;
 use ellipgrid::job;
-use ellipgrid::poisson2d::PicardParams;
+use ellipgrid::job::smooth::{smooth_blocks, SmoothOptions, SurfaceMethod};
 use ellipgrid::quality;
-use ellipgrid::smooth::{smooth_blocks, SmoothOptions, SurfaceMethod};
-use ellipgrid::volume::quality3d::AnyQuality;
+use ellipgrid::quality::quality3d::AnyQuality;
 use ellipgrid::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -139,7 +139,8 @@ pub fn main() -> ExitCode {
             allow_folded,
             quiet,
         } => (|| {
-            let orthogonal = ellipgrid::orthogonal::parse_edges(&orthogonal, "--orthogonal")?;
+            let orthogonal =
+                ellipgrid::elliptic::orthogonal::parse_edges(&orthogonal, "--orthogonal")?;
             let opts = SmoothOptions {
                 blocks,
                 linear,
@@ -213,7 +214,7 @@ fn run(
             }
         }
     }
-    ellipgrid::volume::set_progress(!quiet);
+    ellipgrid::elliptic::volume::set_progress(!quiet);
     let mut gen = job::generate(&case, |b| {
         if !quiet {
             print::block(b);
@@ -317,7 +318,7 @@ fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
         let q: AnyQuality = match b {
             Block::Planar(g) => quality::quality2d(g).into(),
             Block::Surface(g) => quality::quality_surface(g).into(),
-            Block::Volume(g) => AnyQuality::Volume(ellipgrid::volume::quality3d(g)),
+            Block::Volume(g) => AnyQuality::Volume(ellipgrid::quality::quality3d::quality3d(g)),
         };
         let d = b.dims();
         if let Block::Volume(_) = b {

@@ -5,7 +5,7 @@ use ellipgrid::plot::{self, Plane, PlotOptions, View};
 use ellipgrid::{Error, Result};
 use std::path::PathBuf;
 
-use super::convert::{load, metric};
+use crate::cli::convert::{load, metric};
 
 /// Arguments of `ellipgrid plot`.
 #[derive(Args, Debug)]

@@ -1,8 +1,8 @@
 //! Human-readable output of a run: the Picard history and the quality table per block.
 
+use ellipgrid::elliptic::picard::PicardInfo;
+use ellipgrid::job::smooth::SmoothReport;
 use ellipgrid::job::{BlockReport, RunReport};
-use ellipgrid::poisson2d::PicardInfo;
-use ellipgrid::smooth::SmoothReport;
 
 /// Prints what `smooth` did to a block.
 pub fn smoothed(r: &SmoothReport) {
@@ -42,7 +42,7 @@ pub fn block(b: &BlockReport) {
 }
 
 /// Prints a volume block's Picard history and 3D quality report.
-pub fn volume(v: &ellipgrid::volume::case3d::VolumeReport) {
+pub fn volume(v: &ellipgrid::job::volume::VolumeReport) {
     println!(
         "volume '{}' ({} × {} × {} nodes), {:.3} s",
         v.name, v.ni, v.nj, v.nk, v.seconds

@@ -7,8 +7,8 @@ use ellipgrid::cad::{self, StepFace};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::io::plot3d::{self, Plot3dFormat};
 use ellipgrid::io::Block;
-use ellipgrid::volume::quality3d::AnyQuality;
-use ellipgrid::{job, linsolve, quality, Error, Result};
+use ellipgrid::quality::quality3d::AnyQuality;
+use ellipgrid::{job, quality, solve, Error, Result};
 use ellipgrid_geometry::{HermiteSurface, Surface, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -164,7 +164,7 @@ fn grid(a: &GridArgs) -> Result<()> {
         }
     };
     let (di, dj) = (spacing(a.first_i, a.last_i), spacing(a.first_j, a.last_j));
-    let mut solver = linsolve::by_name(&a.linear).map_err(|m| Error::input("--linear", m))?;
+    let mut solver = solve::select::by_name(&a.linear).map_err(|m| Error::input("--linear", m))?;
     let mut blocks = Vec::new();
     let mut fold = None;
     for f in chosen {

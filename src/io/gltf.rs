@@ -2,7 +2,7 @@
 //!
 //! Every block becomes one node with its own named mesh and material (a distinct colour per
 //! block). The mesh has two primitives over the same vertices: TRIANGLES (two per quad of every
-//! patch, counter-clockwise about the outward normal, see [`super::patches`]) with unit vertex
+//! patch, counter-clockwise about the outward normal, see [`crate::io::patches`]) with unit vertex
 //! NORMALs, and LINES along every grid line of the patches. A planar block lies at z = 0, a
 //! volume block shows its six faces (each face has its own vertices so that normals stay sharp
 //! at the block's edges). Optionally the vertices carry COLOR_0 from a cell quality metric
@@ -18,8 +18,8 @@ use std::path::Path;
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 
-use super::patches::{block_color, block_patches, colormap, value_range, CellMetric, Patch};
-use super::{write_atomic, Block};
+use crate::io::patches::{block_color, block_patches, colormap, value_range, CellMetric, Patch};
+use crate::io::{write_atomic, Block};
 use crate::{Error, Result};
 
 /// Options of the glTF writer.

@@ -1,15 +1,15 @@
 //! Wavefront OBJ output (`.obj` with its `.mtl` beside it) for viewers and CAD tools.
 //!
 //! One group (`g NAME`) and one material (`usemtl NAME`, a distinct diffuse colour per block) per
-//! block. The quads of its patches ([`super::patches`]: the block at z = 0, the surface, or the six
+//! block. The quads of its patches ([`crate::io::patches`]: the block at z = 0, the surface, or the six
 //! outward faces of a volume) are written as four-vertex faces `f v//vn …`, counter-clockwise
 //! about the outward normal, with unit vertex normals. Coordinates are written with Rust's
 //! shortest round-trip formatting, so a reader with f64 gets the points back exactly.
 
 use std::path::Path;
 
-use super::patches::{block_color, block_patches, Patch};
-use super::{write_atomic, Block};
+use crate::io::patches::{block_color, block_patches, Patch};
+use crate::io::{write_atomic, Block};
 use crate::{Error, Result};
 
 /// Writes `blocks` as OBJ at `path` and their materials at `path` with extension `.mtl`, both

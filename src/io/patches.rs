@@ -8,7 +8,7 @@
 //! k = 0, k = N, each oriented so that its normal points out of the block (for a left-handed
 //! block too: the signed volume enclosed by the faces decides).
 
-use super::Block;
+use crate::io::Block;
 use crate::quality;
 use crate::Grid2;
 

@@ -12,7 +12,7 @@ use std::fmt;
 use std::io::Write;
 use std::path::Path;
 
-use super::{write_atomic, Block};
+use crate::io::{write_atomic, Block};
 use crate::{Error, Grid2, Grid3, Result};
 
 mod ascii;

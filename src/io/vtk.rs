@@ -5,7 +5,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use super::{write_atomic, Block};
+use crate::io::{write_atomic, Block};
 use crate::{Error, Result};
 
 /// Writes `block` as a VTK XML StructuredGrid (`.vts`), atomically.

@@ -1,4 +1,4 @@
-//! Reading VTK XML structured grids back: `.vts` (as [`super::vtk`] writes them, and other
+//! Reading VTK XML structured grids back: `.vts` (as [`crate::io::vtk`] writes them, and other
 //! uncompressed ones: raw appended or ASCII inline points, Float32 or Float64, either byte order,
 //! UInt32 or UInt64 headers) and `.vtm` indexes of such files. Used by `ellipgrid convert` and
 //! `ellipgrid plot`, so that every grid format ellipgrid writes with structure can be read again.
@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use super::Block;
+use crate::io::Block;
 use crate::{Error, Grid2, Grid3, Result};
 
 /// Reads one `.vts` file.

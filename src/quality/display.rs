@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use super::QualityReport;
+use crate::quality::QualityReport;
 
 /// A number in 4 significant digits, fixed or exponential by size; "-" for NaN.
 pub(super) fn num(v: f64) -> String {
@@ -77,4 +77,12 @@ impl fmt::Display for QualityReport {
         }
         Ok(())
     }
+}
+
+/// "cell (i, j), …" for messages about folded cells.
+pub(crate) fn cell_list(c: &[[usize; 2]]) -> String {
+    c.iter()
+        .map(|c| format!("cell ({}, {})", c[0], c[1]))
+        .collect::<Vec<_>>()
+        .join(", ")
 }

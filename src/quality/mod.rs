@@ -35,8 +35,10 @@
 //! written as the strings `"inf"`, `"-inf"` and `"nan"` and read back as such.
 
 mod display;
+pub(crate) use display::cell_list;
 mod geom;
 mod json_f64;
+pub mod quality3d;
 #[cfg(test)]
 mod tests;
 

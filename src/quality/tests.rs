@@ -1,5 +1,5 @@
-use super::display::num;
-use super::*;
+use crate::quality::display::num;
+use crate::quality::*;
 
 /// Tolerance for quantities computed exactly up to rounding.
 const TOL: f64 = 1e-12;

@@ -8,7 +8,7 @@
 //! whose values then parse). Since no precision or byte order is stored, `Double` and `Little`
 //! are reported.
 
-use super::{node, ByteOrder, Encoding, Parsed, Plot3dFormat, Precision, RawBlock};
+use crate::io::plot3d::{node, ByteOrder, Encoding, Parsed, Plot3dFormat, Precision, RawBlock};
 
 type Res<T> = std::result::Result<T, String>;
 

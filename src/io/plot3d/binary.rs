@@ -11,7 +11,7 @@
 //! IBLANK) whose header is valid (counts ≥ 1) and whose total size equals the file size.
 //! If a file looks Fortran-unformatted but fails, the stream rules are tried before giving up.
 
-use super::{ByteOrder, Encoding, Parsed, Plot3dFormat, Precision, RawBlock};
+use crate::io::plot3d::{ByteOrder, Encoding, Parsed, Plot3dFormat, Precision, RawBlock};
 
 type Res<T> = std::result::Result<T, String>;
 

@@ -1,6 +1,6 @@
 //! Round trips of every Plot3D flavour, autodetection, and malformed input.
 
-use super::*;
+use crate::io::plot3d::*;
 use std::path::PathBuf;
 
 /// Irregular coordinate values; with `extreme` also ±0, subnormals and huge/tiny magnitudes.

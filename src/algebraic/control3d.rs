@@ -1,0 +1,149 @@
+//! The 18 control functions of the volume grid system, eqs. [83, 84] (METHOD.md §6).
+
+use crate::algebraic::bilinear3d::{bilinear, det3, EdgeFunctions3, ParamGrid3};
+use crate::algebraic::ControlKind;
+use crate::grid::faces::Faces;
+use crate::Result;
+use rayon::prelude::*;
+
+/// Index pairs ij of the six second derivatives, in storage order: 11, 12, 13, 22, 23, 33.
+pub const PAIRS: [[usize; 2]; 6] = [[0, 0], [0, 1], [0, 2], [1, 1], [1, 2], [2, 2]];
+
+/// The control functions per node, fixed during the whole elliptic solve:
+/// `p[n][3 m + c] = P^c_{ij}` with ij = `PAIRS[m]` and c = 0, 1, 2 (s, t, u component);
+/// zero on the boundary.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Control3 {
+    dims: [usize; 3],
+    p: Vec<[f64; 18]>,
+}
+
+/// Central differences of `f` at node n of a grid with strides (1, sj, sk), unit spacing:
+/// the first derivatives (ξ, η, ζ) and the six second derivatives in [`PAIRS`] order. The
+/// mixed derivatives use the 4-corner formula of the Picard operator (METHOD.md §8).
+#[inline]
+pub fn central(f: &[f64], n: usize, st: [usize; 3]) -> ([f64; 3], [f64; 6]) {
+    let d1 = |a: usize| 0.5 * (f[n + st[a]] - f[n - st[a]]);
+    let d2 = |a: usize| f[n + st[a]] - 2.0 * f[n] + f[n - st[a]];
+    let dm = |a: usize, b: usize| {
+        0.25 * (f[n + st[a] + st[b]] - f[n - st[a] + st[b]] - f[n + st[a] - st[b]]
+            + f[n - st[a] - st[b]])
+    };
+    (
+        [d1(0), d1(1), d1(2)],
+        [d2(0), dm(0, 1), dm(0, 2), d2(1), dm(1, 2), d2(2)],
+    )
+}
+
+impl Control3 {
+    /// All control functions zero: a Laplace (Winslow) volume grid, for comparison.
+    pub fn zeros(dims: [usize; 3]) -> Self {
+        Control3 {
+            dims,
+            p: vec![[0.0; 18]; dims.iter().product()],
+        }
+    }
+
+    /// Control functions at interior nodes, eqs. [83, 84]: P_ij = −T⁻¹ (s_{ξiξj}, t_{ξiξj},
+    /// u_{ξiξj})ᵀ with T = ∂(s, t, u)/∂(ξ, η, ζ), by central differences of the bilinear
+    /// (s, t, u) grid in index space (the grid system is homogeneous in the spacings, so the
+    /// factors 1/N, 1/M, 1/L cancel). With the operator's own mixed-derivative formula, the
+    /// tensor-product box is an exact discrete solution.
+    pub fn from_algebraic(pg: &ParamGrid3) -> Self {
+        let dims = pg.dims();
+        let [ni, nj, nk] = dims;
+        let plane = ni * nj;
+        let st = [1, ni, plane];
+        let mut p = vec![[0.0; 18]; plane * nk];
+        p.par_chunks_mut(plane).enumerate().for_each(|(k, row)| {
+            if k == 0 || k + 1 == nk {
+                return;
+            }
+            for j in 1..nj - 1 {
+                for i in 1..ni - 1 {
+                    let n = i + ni * j + plane * k;
+                    let (ds, dds) = central(&pg.s, n, st);
+                    let (dt, ddt) = central(&pg.t, n, st);
+                    let (du, ddu) = central(&pg.u, n, st);
+                    let tm = [ds, dt, du];
+                    let d = det3(tm);
+                    let q = &mut row[i + ni * j];
+                    for m in 0..6 {
+                        let r = [dds[m], ddt[m], ddu[m]];
+                        // Cramer: x = T⁻¹ r, P = −x.
+                        for c in 0..3 {
+                            let mut mc = tm;
+                            for (rr, mrow) in r.iter().zip(mc.iter_mut()) {
+                                mrow[c] = *rr;
+                            }
+                            q[3 * m + c] = -det3(mc) / d;
+                        }
+                    }
+                }
+            }
+        });
+        Control3 { dims, p }
+    }
+
+    /// Node counts (ni, nj, nk).
+    pub fn dims(&self) -> [usize; 3] {
+        self.dims
+    }
+
+    /// The 18 control functions at node index n.
+    #[inline]
+    pub fn at(&self, n: usize) -> &[f64; 18] {
+        &self.p[n]
+    }
+
+    /// True if every value is finite (a degenerate algebraic map gives infinities).
+    pub fn all_finite(&self) -> bool {
+        self.p.iter().all(|q| q.iter().all(|v| v.is_finite()))
+    }
+}
+
+/// The control functions of a block's faces for the chosen kind: from the bilinear
+/// transformation of the arclength edge functions [83, 84], or all zero.
+pub fn control_for(faces: &Faces, kind: ControlKind, place: &str) -> Result<Control3> {
+    Ok(match kind {
+        ControlKind::Algebraic => {
+            Control3::from_algebraic(&bilinear(&EdgeFunctions3::arclength(faces), place)?)
+        }
+        ControlKind::Laplace => Control3::zeros(faces.dims()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3};
+
+    #[test]
+    fn thomas_middlecoff_in_3d() {
+        // Equal distributions on parallel edges: P^1_11 = −s_ξξ/s_ξ, P^2_22 = −t_ηη/t_η,
+        // P^3_33 = −u_ζζ/u_ζ, all others zero.
+        let s: Vec<f64> = (0..6).map(|i| (i as f64 / 5.0).powi(2)).collect();
+        let t: Vec<f64> = (0..5).map(|j| (j as f64 / 4.0).sqrt()).collect();
+        let u: Vec<f64> = (0..5)
+            .map(|k| ((k as f64 / 4.0) * 2.0).sinh() / 2f64.sinh())
+            .collect();
+        let ef = EdgeFunctions3 {
+            s: std::array::from_fn(|_| s.clone()),
+            t: std::array::from_fn(|_| t.clone()),
+            u: std::array::from_fn(|_| u.clone()),
+        };
+        let c = Control3::from_algebraic(&bilinear(&ef, "b").unwrap());
+        let (i, j, k) = (2, 2, 3);
+        let q = c.at(i + 6 * (j + 5 * k));
+        let tm = |f: &[f64], n: usize| {
+            -(f[n + 1] - 2.0 * f[n] + f[n - 1]) / (0.5 * (f[n + 1] - f[n - 1]))
+        };
+        let mut want = [0.0; 18];
+        want[0] = tm(&s, i);
+        want[3 * 3 + 1] = tm(&t, j);
+        want[3 * 5 + 2] = tm(&u, k);
+        for (a, b) in q.iter().zip(want) {
+            assert!((a - b).abs() < 1e-13, "{q:?}");
+        }
+    }
+}

@@ -1,0 +1,300 @@
+//! The case file: a TOML description of blocks (edge curves, point counts, distributions),
+//! solver options and outputs. See README.md, "Case files", for the reference.
+//!
+//! Parsing is strict (unknown keys are errors) and every error names the file, the block and
+//! the edge. Relative input paths (airfoil tables) are relative to the case file's folder.
+
+use crate::grid::boundary::Boundary2;
+use crate::grid::Edge;
+use crate::{Error, Result};
+use ellipgrid_geometry::{self as geo, Curve, Vec3};
+
+pub mod spec;
+pub mod surface;
+pub mod volume;
+pub use spec::{
+    BlockKind, BlockSpec, Case, CurveSpec, DistributionSpec, EdgeSpec, OutputSpec, SolverSpec,
+    SurfaceSpec,
+};
+use std::path::{Path, PathBuf};
+
+/// A case file read from disk, with its folder for relative input paths.
+#[derive(Clone, Debug)]
+pub struct LoadedCase {
+    pub path: PathBuf,
+    pub case: Case,
+}
+
+impl LoadedCase {
+    /// Reads and parses a case file.
+    pub fn read(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses case-file text; `path` is used for messages and relative paths.
+    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+        let case: Case = toml::from_str(text)
+            .map_err(|e| Error::input(path.display().to_string(), e.to_string()))?;
+        if case.blocks.is_empty() && case.volumes.is_empty() {
+            return Err(Error::input(
+                path.display().to_string(),
+                "the case defines no [[block]] or [[volume]]",
+            ));
+        }
+        Ok(LoadedCase {
+            path: path.to_path_buf(),
+            case,
+        })
+    }
+
+    /// "file: block 'name'" for messages.
+    pub fn block_place(&self, k: usize) -> String {
+        format!("{}: block '{}'", self.path.display(), self.block_name(k))
+    }
+
+    /// The name of block k.
+    pub fn block_name(&self, k: usize) -> String {
+        self.case.blocks[k]
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("block{}", k + 1))
+    }
+
+    /// The `orthogonal` edges of block k as flags E1, E2, E3, E4 (unknown names are errors
+    /// naming the block).
+    pub fn block_orthogonal(&self, k: usize) -> Result<[bool; 4]> {
+        crate::elliptic::orthogonal::parse_edges(
+            &self.case.blocks[k].orthogonal,
+            &self.block_place(k),
+        )
+    }
+
+    /// The validated planar boundary of block k.
+    pub fn planar_boundary(&self, k: usize) -> Result<Boundary2<2>> {
+        let place = self.block_place(k);
+        let mut pts: [Vec<[f64; 2]>; 4] = Default::default();
+        for (e, p3) in Edge::ALL.into_iter().zip(self.edge_point_lists(k)?) {
+            if let Some(n) = p3.iter().position(|p| p.z != 0.0) {
+                return Err(Error::input(
+                    format!("{place}, edge {e}"),
+                    format!(
+                        "point {n} has z = {} but the block is planar (use kind = \"minimal\" \
+                         for a surface spanned by 3D edges)",
+                        p3[n].z
+                    ),
+                ));
+            }
+            pts[e.index()] = p3.iter().map(|p| [p.x, p.y]).collect();
+        }
+        Boundary2::new(pts, &place)
+    }
+
+    /// The validated 3D boundary of a minimal-surface block k.
+    pub fn minimal_boundary(&self, k: usize) -> Result<Boundary2<3>> {
+        let pts = self
+            .edge_point_lists(k)?
+            .map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
+        Boundary2::new(pts, &self.block_place(k))
+    }
+
+    /// Rejects a block with fewer than 3 nodes along i or j.
+    pub(crate) fn check_size(&self, k: usize) -> Result<()> {
+        let b = &self.case.blocks[k];
+        if b.ni < 3 || b.nj < 3 {
+            return Err(Error::input(
+                self.block_place(k),
+                format!(
+                    "ni = {}, nj = {}: a block needs at least 3 nodes each way",
+                    b.ni, b.nj
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The nodes of the four edges of block k (E1..E4), from their curves.
+    fn edge_point_lists(&self, k: usize) -> Result<[Vec<Vec3>; 4]> {
+        let b = &self.case.blocks[k];
+        let place = self.block_place(k);
+        self.check_size(k)?;
+        let mut out: [Vec<Vec3>; 4] = Default::default();
+        for (e, spec) in Edge::ALL.into_iter().zip([&b.e1, &b.e2, &b.e3, &b.e4]) {
+            let n = if e.runs_along_i() { b.ni } else { b.nj };
+            out[e.index()] = self.edge_points(spec, n, &format!("{place}, edge {e}"))?;
+        }
+        Ok(out)
+    }
+
+    /// The n nodes of one edge.
+    pub fn edge_points(&self, spec: &EdgeSpec, n: usize, at: &str) -> Result<Vec<Vec3>> {
+        let Some(curve_spec) = &spec.curve else {
+            return Err(Error::input(at, "the edge needs a curve = { type = ... }"));
+        };
+        if let CurveSpec::Nodes { points } = curve_spec {
+            if !matches!(spec.distribution, DistributionSpec::Uniform) {
+                return Err(Error::input(at, "a 'nodes' edge takes no distribution"));
+            }
+            let mut p = points
+                .iter()
+                .enumerate()
+                .map(|(k, q)| point(q, at, &format!("points[{k}]")))
+                .collect::<Result<Vec<_>>>()?;
+            if p.len() != n {
+                return Err(Error::input(
+                    at,
+                    format!(
+                        "{} nodes given but the block needs {n} on this edge",
+                        p.len()
+                    ),
+                ));
+            }
+            if spec.reverse {
+                p.reverse();
+            }
+            return Ok(p);
+        }
+        let curve = self.curve(curve_spec, at)?;
+        let map = geo::ArclengthMap::new(curve.as_ref());
+        let sigma = spec.distribution.sample(n, map.length(), at)?;
+        // `first` belongs to the edge's first node; a reversed edge starts at the curve's end,
+        // so node k sits at curve arclength 1 − σ_k.
+        let at_sigma = |sig: &[f64]| -> Vec<Vec3> {
+            map.params(sig)
+                .into_iter()
+                .map(|u| curve.point(u))
+                .collect()
+        };
+        let p = if spec.reverse {
+            let mut p = at_sigma(&geo::reverse(&sigma));
+            p.reverse();
+            p
+        } else {
+            at_sigma(&sigma)
+        };
+        Ok(p)
+    }
+
+    /// The geometric curve of a spec.
+    fn curve(&self, spec: &CurveSpec, at: &str) -> Result<Box<dyn Curve>> {
+        let geo_err = |source| Error::Geometry {
+            place: at.to_string(),
+            source,
+        };
+        let pts = |v: &[Vec<f64>]| -> Result<Vec<Vec3>> {
+            v.iter()
+                .enumerate()
+                .map(|(k, q)| point(q, at, &format!("points[{k}]")))
+                .collect()
+        };
+        Ok(match spec {
+            CurveSpec::Line { from, to } => Box::new(geo::Line {
+                from: point(from, at, "from")?,
+                to: point(to, at, "to")?,
+            }),
+            CurveSpec::Arc {
+                center,
+                radius,
+                start_deg,
+                end_deg,
+            } => Box::new(
+                geo::Arc::new(point(center, at, "center")?, *radius, *start_deg, *end_deg)
+                    .map_err(geo_err)?,
+            ),
+            CurveSpec::ArcThrough { from, mid, to } => Box::new(
+                geo::Arc::through(
+                    point(from, at, "from")?,
+                    point(mid, at, "mid")?,
+                    point(to, at, "to")?,
+                )
+                .map_err(geo_err)?,
+            ),
+            CurveSpec::Polyline { points } => {
+                Box::new(geo::Polyline::new(pts(points)?).map_err(geo_err)?)
+            }
+            CurveSpec::Spline { points } => {
+                Box::new(geo::Spline::new(pts(points)?).map_err(geo_err)?)
+            }
+            CurveSpec::Naca4 {
+                code,
+                chord,
+                sharp_te,
+                side,
+                origin,
+            } => {
+                let foil = geo::Naca4::new(code, *chord, *sharp_te).map_err(geo_err)?;
+                let o = origin_of(origin, at)?;
+                match side.as_str() {
+                    "both" => Box::new(Shifted(foil, o)),
+                    "upper" => Box::new(Shifted(foil.upper(), o)),
+                    "lower" => Box::new(Shifted(foil.lower(), o)),
+                    s => {
+                        return Err(Error::input(
+                            at,
+                            format!("naca4 side '{s}': expected both, upper or lower"),
+                        ))
+                    }
+                }
+            }
+            CurveSpec::Airfoil {
+                file,
+                chord,
+                origin,
+            } => {
+                let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
+                let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
+                let pts = geo::read_airfoil_dat(&text).map_err(|source| Error::Geometry {
+                    place: format!("{at}: {}", path.display()),
+                    source,
+                })?;
+                let o = origin_of(origin, at)?;
+                let pts = pts.into_iter().map(|p| p * *chord + o).collect();
+                Box::new(geo::airfoil_curve(pts).map_err(geo_err)?)
+            }
+            CurveSpec::Nodes { .. } => unreachable!("handled by edge_points"),
+        })
+    }
+}
+
+/// A curve moved by a constant offset.
+struct Shifted<C>(C, Vec3);
+
+impl<C: Curve> Curve for Shifted<C> {
+    fn point(&self, u: f64) -> Vec3 {
+        self.0.point(u) + self.1
+    }
+    fn derivative(&self, u: f64) -> Vec3 {
+        self.0.derivative(u)
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        self.0.breakpoints()
+    }
+}
+
+fn origin_of(o: &Option<Vec<f64>>, at: &str) -> Result<Vec3> {
+    o.as_ref()
+        .map(|v| point(v, at, "origin"))
+        .transpose()
+        .map(|p| p.unwrap_or_else(Vec3::zeros))
+}
+
+/// A point from `[x, y]` or `[x, y, z]`, finite.
+pub(crate) fn point(v: &[f64], at: &str, what: &str) -> Result<Vec3> {
+    let p = match v {
+        [x, y] => Vec3::new(*x, *y, 0.0),
+        [x, y, z] => Vec3::new(*x, *y, *z),
+        _ => {
+            return Err(Error::input(
+                at,
+                format!("{what}: a point has 2 or 3 coordinates, got {}", v.len()),
+            ))
+        }
+    };
+    if p.iter().any(|c| !c.is_finite()) {
+        return Err(Error::input(
+            at,
+            format!("{what}: coordinate is not finite"),
+        ));
+    }
+    Ok(p)
+}

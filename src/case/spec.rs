@@ -1,0 +1,347 @@
+//! The case file's schema: the TOML tables as serde types, strict (unknown keys are errors).
+//! README.md, "Case files", is the reference; the builders that turn a spec into boundaries,
+//! surfaces and faces are [`crate::case::LoadedCase`], [`crate::case::surface`] and
+//! [`crate::case::volume`].
+
+use crate::algebraic::ControlKind;
+use crate::elliptic::picard::PicardParams;
+use crate::{Error, Result};
+use ellipgrid_geometry as geo;
+use serde::Deserialize;
+use std::path::PathBuf;
+
+/// A whole case file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// Where and how to write the grid.
+    #[serde(default)]
+    pub output: OutputSpec,
+    /// Solver options shared by all blocks.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// The blocks, gridded independently and written in this order.
+    #[serde(rename = "block", default)]
+    pub blocks: Vec<BlockSpec>,
+    /// Volume blocks (`[[volume]]`, see `volume::case3d`), written after the blocks.
+    #[serde(rename = "volume", default)]
+    pub volumes: Vec<VolumeSpec>,
+}
+
+/// `[output]`: files to write and the Plot3D flavour.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Output files, by extension: `.x`, `.xyz`, `.p3d`, `.g` Plot3D; `.vts` VTK (one block);
+    /// `.vtm` VTK multi-block. Relative to the current directory. `-o` replaces them.
+    #[serde(default)]
+    pub files: Vec<PathBuf>,
+    /// Plot3D encoding: "unformatted" (Fortran records, default), "formatted" (ASCII) or
+    /// "stream" (C binary).
+    pub encoding: Option<String>,
+    /// Plot3D precision: "double" (default) or "single".
+    pub precision: Option<String>,
+    /// Write the block count record (default true).
+    pub multi_block: Option<bool>,
+    /// Write planar blocks as 2D Plot3D (x, y only; default true). False writes z = 0, nk = 1.
+    pub two_d: Option<bool>,
+}
+
+/// `[solver]`: options of the elliptic solve.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSpec {
+    /// Linear solver of each Picard step: "multigrid" (default; with nested iteration unless
+    /// `nested = false`) or "direct" (sparse LU).
+    pub linear: String,
+    /// Control functions: "algebraic" (the paper's, default) or "laplace" (all zero).
+    pub control: ControlKind,
+    /// Picard iteration parameters.
+    #[serde(flatten)]
+    pub picard: PicardParams,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        SolverSpec {
+            linear: "multigrid".into(),
+            control: ControlKind::Algebraic,
+            picard: PicardParams::default(),
+        }
+    }
+}
+
+/// `[[block]]`: one block with its four edges.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSpec {
+    /// Name used in messages and outputs (default `block<k>`).
+    pub name: Option<String>,
+    /// What the block is: "planar" (default; Section 2), "minimal" (a soap film spanned by
+    /// four 3D edges; Section 3) or "surface" (a grid on a parametrized surface; Section 4).
+    #[serde(default)]
+    pub kind: BlockKind,
+    /// Nodes along i (on E3 and E4).
+    pub ni: usize,
+    /// Nodes along j (on E1 and E2).
+    pub nj: usize,
+    /// Edges at which the grid is made orthogonal (Section 2.4), e.g. `["E3"]`; default none.
+    #[serde(default)]
+    pub orthogonal: Vec<String>,
+    #[serde(rename = "E1")]
+    pub e1: EdgeSpec,
+    #[serde(rename = "E2")]
+    pub e2: EdgeSpec,
+    #[serde(rename = "E3")]
+    pub e3: EdgeSpec,
+    #[serde(rename = "E4")]
+    pub e4: EdgeSpec,
+    /// The surface of a `kind = "surface"` block (its edges are the surface's own edges).
+    pub surface: Option<SurfaceSpec>,
+    /// A reference surface: the report gives the distance of the grid's nodes from it (for
+    /// example Scherk's surface for a minimal-surface block spanned by edges on it).
+    pub reference: Option<SurfaceSpec>,
+}
+
+/// The kind of a block.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BlockKind {
+    /// A planar domain: edges in the xy-plane, the Poisson system of Section 2.
+    #[default]
+    Planar,
+    /// A minimal surface spanned by four 3D edges: the same system with x ∈ R³ (Section 3).
+    Minimal,
+    /// A parametrized surface gridded by Laplace–Beltrami and inversion (Section 4).
+    Surface,
+}
+
+/// One edge: a curve, the distribution of nodes along it, and its direction.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeSpec {
+    /// The edge's curve (planar and minimal blocks; surface blocks use the surface's edges).
+    pub curve: Option<CurveSpec>,
+    #[serde(default)]
+    pub distribution: DistributionSpec,
+    /// Run along the curve from its end to its start.
+    #[serde(default)]
+    pub reverse: bool,
+}
+
+/// Edge curves. Points are `[x, y]` (or `[x, y, z]` with z = 0 for planar blocks).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum CurveSpec {
+    /// Straight segment.
+    Line { from: Vec<f64>, to: Vec<f64> },
+    /// Circular arc about `center` from `start_deg` to `end_deg` (counter-clockwise if
+    /// end > start).
+    Arc {
+        center: Vec<f64>,
+        radius: f64,
+        start_deg: f64,
+        end_deg: f64,
+    },
+    /// Circular arc through three points.
+    ArcThrough {
+        from: Vec<f64>,
+        mid: Vec<f64>,
+        to: Vec<f64>,
+    },
+    /// Piecewise-linear curve through points.
+    Polyline { points: Vec<Vec<f64>> },
+    /// C² cubic spline through points (chord-length parametrized).
+    Spline { points: Vec<Vec<f64>> },
+    /// NACA 4-digit airfoil: `side` "both" (TE → upper → LE → lower → TE), "upper" or "lower"
+    /// (LE → TE), scaled by `chord` and moved to `origin` (leading edge).
+    Naca4 {
+        code: String,
+        #[serde(default = "one")]
+        chord: f64,
+        #[serde(default = "yes")]
+        sharp_te: bool,
+        #[serde(default = "both")]
+        side: String,
+        #[serde(default)]
+        origin: Option<Vec<f64>>,
+    },
+    /// Airfoil table (Selig or Lednicer .dat), splined; scaled by `chord`, moved to `origin`.
+    Airfoil {
+        file: PathBuf,
+        #[serde(default = "one")]
+        chord: f64,
+        #[serde(default)]
+        origin: Option<Vec<f64>>,
+    },
+    /// The edge's nodes themselves; their count must match the block and `distribution` is
+    /// not used.
+    Nodes { points: Vec<Vec<f64>> },
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn yes() -> bool {
+    true
+}
+fn both() -> String {
+    "both".into()
+}
+
+/// Node distribution along an edge. Spacings are lengths along the curve, at the edge's
+/// first node (`first`) and last node (`last`) in index order.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum DistributionSpec {
+    /// Equal arclength spacing.
+    #[default]
+    Uniform,
+    /// Geometric growth from the first spacing.
+    Geometric { first: f64 },
+    /// Vinokur's one- or two-sided stretching hitting the given spacings exactly.
+    Vinokur {
+        first: Option<f64>,
+        last: Option<f64>,
+    },
+}
+
+impl DistributionSpec {
+    /// Normalized arclengths of `n` nodes on an edge of length `len` (spacings in the spec are
+    /// lengths; the distribution hits them exactly).
+    pub fn sample(&self, n: usize, len: f64, at: &str) -> Result<Vec<f64>> {
+        if !(len.is_finite() && len > 0.0) {
+            return Err(Error::input(at, "the edge has zero length"));
+        }
+        let rel = |v: f64, name: &str| -> Result<f64> {
+            if v.is_finite() && v > 0.0 {
+                Ok(v / len)
+            } else {
+                Err(Error::input(
+                    at,
+                    format!("{name} spacing must be positive, got {v}"),
+                ))
+            }
+        };
+        let dist = match self {
+            DistributionSpec::Uniform => geo::Distribution::Uniform,
+            DistributionSpec::Geometric { first } => geo::Distribution::Geometric {
+                first: rel(*first, "first")?,
+            },
+            DistributionSpec::Vinokur { first, last } => geo::Distribution::Vinokur {
+                first: first.map(|v| rel(v, "first")).transpose()?,
+                last: last.map(|v| rel(v, "last")).transpose()?,
+            },
+        };
+        dist.sample(n).map_err(|source| Error::Geometry {
+            place: at.to_string(),
+            source,
+        })
+    }
+}
+
+/// The surface of a `kind = "surface"` block. Its parameter square's sides are the block's
+/// edges: E1 ↔ u = 0, E2 ↔ u = 1, E3 ↔ v = 0, E4 ↔ v = 1.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SurfaceSpec {
+    /// A bicubic Hermite surface through a control net: read from a Plot3D file (a surface
+    /// block, ni × nj × 1; `block` is 1-based, default 1), or given inline as `ni`, `nj` and
+    /// `points` (i fastest). Control points sit at uniform parameter values.
+    HermiteNet {
+        file: Option<PathBuf>,
+        #[serde(default)]
+        block: Option<usize>,
+        ni: Option<usize>,
+        nj: Option<usize>,
+        points: Option<Vec<Vec<f64>>>,
+    },
+    /// The plane x = origin + u du + v dv.
+    Plane {
+        origin: Vec<f64>,
+        du: Vec<f64>,
+        dv: Vec<f64>,
+    },
+    /// The paper's z = (1/8) tanh(15 (1/4 − (x−1)² − (y−1)²)) over (x, y) ∈ [0, 2]².
+    TanhBump,
+    /// Scherk's minimal surface z = ln(cos y / cos x) over [−a, a]².
+    Scherk { half_width: f64 },
+}
+
+/// `[[volume]]`: one volume block.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VolumeSpec {
+    /// Name used in messages and outputs (default `volume<k>`).
+    pub name: Option<String>,
+    /// Nodes along i (on E1–E4), j (E5–E8), k (E9–E12).
+    pub ni: usize,
+    pub nj: usize,
+    pub nk: usize,
+    /// Linear solver of each Picard step: "auto" (default: the 3D multigrid from
+    /// [`crate::solve::solver3d::AUTO_MULTIGRID_NODES`] nodes, else Bi-CGSTAB/ILU(0)), "multigrid",
+    /// "bicgstab" or "direct" (small blocks).
+    #[serde(default = "auto")]
+    pub linear: String,
+    /// Faces from edges: "tfi" (default; Coons patches) or "elliptic" (planar faces
+    /// regridded by the Section 2 system).
+    #[serde(default)]
+    pub face_grids: Option<String>,
+    /// Faces from a Plot3D file instead of edges.
+    pub faces: Option<FacesFile>,
+    /// A wall face ("F1" … "F6") whose first-cell heights are held to the bilinear
+    /// interpolation of the first spacings of the four edges leaving it ([`crate::elliptic::wall`]).
+    pub wall: Option<String>,
+    /// With `wall`: also make the grid lines leave the wall along its normal
+    /// ([`crate::elliptic::wall_normal`]; default true).
+    pub wall_orthogonal: Option<bool>,
+    #[serde(rename = "E1")]
+    pub e1: Option<EdgeSpec>,
+    #[serde(rename = "E2")]
+    pub e2: Option<EdgeSpec>,
+    #[serde(rename = "E3")]
+    pub e3: Option<EdgeSpec>,
+    #[serde(rename = "E4")]
+    pub e4: Option<EdgeSpec>,
+    #[serde(rename = "E5")]
+    pub e5: Option<EdgeSpec>,
+    #[serde(rename = "E6")]
+    pub e6: Option<EdgeSpec>,
+    #[serde(rename = "E7")]
+    pub e7: Option<EdgeSpec>,
+    #[serde(rename = "E8")]
+    pub e8: Option<EdgeSpec>,
+    #[serde(rename = "E9")]
+    pub e9: Option<EdgeSpec>,
+    #[serde(rename = "E10")]
+    pub e10: Option<EdgeSpec>,
+    #[serde(rename = "E11")]
+    pub e11: Option<EdgeSpec>,
+    #[serde(rename = "E12")]
+    pub e12: Option<EdgeSpec>,
+}
+
+fn auto() -> String {
+    "auto".into()
+}
+
+/// `faces = { file = "faces.x", orient = ["ab", …] }`: six surface blocks F1 … F6.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FacesFile {
+    /// Plot3D file (any flavour), relative to the case file.
+    pub file: PathBuf,
+    /// Per face, how the stored block's indices (p, q) run along the face's (a, b) of
+    /// [`crate::grid::faces`]: "ab" (default: p = a, q = b), "ba" (transposed), with "-" before a
+    /// letter for a reversed direction ("-ab", "a-b", "b-a", …).
+    pub orient: Option<Vec<String>>,
+}
+
+impl VolumeSpec {
+    pub(crate) fn edge_specs(&self) -> [&Option<EdgeSpec>; 12] {
+        [
+            &self.e1, &self.e2, &self.e3, &self.e4, &self.e5, &self.e6, &self.e7, &self.e8,
+            &self.e9, &self.e10, &self.e11, &self.e12,
+        ]
+    }
+}

@@ -1,0 +1,26 @@
+//! The elliptic stage: the grid systems [24] (2D, minimal surfaces) and [86]–[88] (volumes),
+//! solved by inexact Picard iteration with nested iteration; the harmonic (Neumann) problems
+//! of Section 2.4 and the wall corrections of volume blocks.
+//!
+//! | what | equations | module |
+//! |---|---|---|
+//! | one inexact Picard iteration (2D and 3D) | [41–44] | [`picard`] |
+//! | the 2D / minimal-surface system, nine-point assembly | [24] [43, 44] | [`poisson2d`] |
+//! | the volume system, 19-point assembly | [86]–[88] | [`poisson3d`] |
+//! | nested iteration, work units | — | [`nested`], [`nested3d`] |
+//! | one 2D block (Section 2, minimal surfaces Section 3) | [19–44] | [`domain`] |
+//! | one volume block (Section 5) | [70–92] | [`volume`] |
+//! | harmonic s, t with Neumann edges | [50–53] | [`harmonic`] |
+//! | orthogonality at chosen edges (Section 2.4) | [46–49] | [`orthogonal`] |
+//! | wall spacing and wall-normal lines of volume blocks | — | [`mod@wall`], [`wall_normal`] |
+pub mod domain;
+pub mod harmonic;
+pub mod nested;
+pub mod nested3d;
+pub mod orthogonal;
+pub mod picard;
+pub mod poisson2d;
+pub mod poisson3d;
+pub mod volume;
+pub mod wall;
+pub mod wall_normal;

@@ -1,0 +1,291 @@
+//! The Poisson grid system [24] on a 2D block (planar domain, D = 2, or minimal surface,
+//! D = 3), discretized as in [41]–[44] and solved by Picard iteration.
+//!
+//! Each Picard step freezes P = g22, Q = −g12, R = g11 and S, T (from the control functions)
+//! at the current iterate, assembles the nine-point operator of
+//! `P x_ξξ + 2Q x_ξη + R x_ηη + S x_ξ + T x_η = 0` with central differences (index space), and
+//! solves it once per coordinate with the same operator (one setup, coordinates in parallel).
+//!
+//! The linear systems are solved in correction form, A δ = b − A x_k from δ = 0, i.e. from the
+//! current iterate, and with an iterative solver only as accurately as the step needs
+//! ([`PicardParams::linear_forcing`]): one or two multigrid cycles per step. The steps and the
+//! stopping test (an error estimate below the tolerance) are those of `src/elliptic/picard.rs`, the
+//! same for every solver and for the volume system.
+
+use crate::algebraic::control2d::Control2;
+use crate::elliptic::picard::{self, PicardInfo, PicardParams};
+use crate::grid::boundary::Boundary2;
+use crate::grid::Grid2;
+use crate::solve::stencil9::Stencil9;
+use crate::solve::LinearSolver;
+use crate::{Error, Result};
+use rayon::prelude::*;
+
+/// Assembles the frozen nine-point operator of [43, 44] at iterate `x` and the right-hand
+/// sides (one per coordinate) that carry the Dirichlet boundary values.
+///
+/// Rows are multiplied by −1 so that the diagonal 2(P + R) is positive.
+pub fn assemble<const D: usize>(
+    x: &Grid2<D>,
+    ctrl: &Control2,
+    a: &mut Stencil9,
+    rhs: &mut [Vec<f64>; D],
+) {
+    use crate::solve::stencil9::dir::*;
+    let (ni, nj) = (x.ni(), x.nj());
+    let (nx, ny) = (ni - 2, nj - 2);
+    assert_eq!((a.nx(), a.ny()), (nx, ny));
+    let xs = x.coords();
+    a.coefs_mut()
+        .par_chunks_mut(nx)
+        .enumerate()
+        .for_each(|(jj, arow)| {
+            let j = jj + 1;
+            for (ii, st) in arow.iter_mut().enumerate() {
+                let n = ii + 1 + ni * j;
+                let (e, w, no, so) = (n + 1, n - 1, n + ni, n - ni);
+                let (mut g11, mut g12, mut g22) = (0.0, 0.0, 0.0);
+                for c in xs.iter() {
+                    let xi = 0.5 * (c[e] - c[w]);
+                    let eta = 0.5 * (c[no] - c[so]);
+                    g11 += xi * xi;
+                    g12 += xi * eta;
+                    g22 += eta * eta;
+                }
+                let (p, q, r) = (g22, -g12, g11);
+                let k = ctrl.at(n);
+                let sc = p * k[0] + 2.0 * q * k[2] + r * k[4];
+                let tc = p * k[1] + 2.0 * q * k[3] + r * k[5];
+                st[C] = 2.0 * (p + r);
+                st[E] = -(p + 0.5 * sc);
+                st[W] = -(p - 0.5 * sc);
+                st[N] = -(r + 0.5 * tc);
+                st[S] = -(r - 0.5 * tc);
+                st[NE] = -0.5 * q;
+                st[SW] = -0.5 * q;
+                st[NW] = 0.5 * q;
+                st[SE] = 0.5 * q;
+            }
+        });
+    // Known boundary neighbours go to the right-hand side (rows next to the boundary only).
+    for b in rhs.iter_mut() {
+        b.fill(0.0);
+    }
+    let coefs = a.coefs_mut();
+    let mut row = |ii: usize, jj: usize| {
+        let p = ii + nx * jj;
+        let (i, j) = (ii + 1, jj + 1);
+        for dj in 0..3usize {
+            for di in 0..3usize {
+                let (ib, jb) = (i + di - 1, j + dj - 1);
+                if ib == 0 || jb == 0 || ib == ni - 1 || jb == nj - 1 {
+                    let k = di + 3 * dj;
+                    let m = ib + ni * jb;
+                    for (b, c) in rhs.iter_mut().zip(xs.iter()) {
+                        b[p] -= coefs[p][k] * c[m];
+                    }
+                    coefs[p][k] = 0.0;
+                }
+            }
+        }
+    };
+    for ii in 0..nx {
+        row(ii, 0);
+        if ny > 1 {
+            row(ii, ny - 1);
+        }
+    }
+    for jj in 1..ny.saturating_sub(1) {
+        row(0, jj);
+        if nx > 1 {
+            row(nx - 1, jj);
+        }
+    }
+}
+
+/// Residual of [24] at grid `x`: the largest |A x − b| over interior nodes, each row divided by
+/// its diagonal 2(P + R) and by the domain diameter — a dimensionless number comparable to a
+/// relative node update.
+pub fn residual<const D: usize>(x: &Grid2<D>, a: &Stencil9, rhs: &[Vec<f64>; D]) -> f64 {
+    residual_scaled(x, a, rhs, x.diameter(), None)
+}
+
+/// [`residual`] with the diameter given; rows in parallel, straight from the full grid (the
+/// boundary couplings of `a` are zero after [`assemble`], so boundary values drop out). With
+/// `out`, also stores `b − A x` per coordinate (interior numbering).
+fn residual_scaled<const D: usize>(
+    x: &Grid2<D>,
+    a: &Stencil9,
+    rhs: &[Vec<f64>; D],
+    diam: f64,
+    out: Option<&mut [Vec<f64>; D]>,
+) -> f64 {
+    let (ni, nx) = (x.ni(), a.nx());
+    let xs = x.coords();
+    let row = |jj: usize, arow: &[[f64; 9]], mut out: [Option<&mut [f64]>; D]| {
+        let mut w = 0.0f64;
+        for (ii, st) in arow.iter().enumerate() {
+            let (p, n) = (ii + nx * jj, ii + 1 + ni * (jj + 1));
+            for (c, (xc, b)) in xs.iter().zip(rhs.iter()).enumerate() {
+                let (lo, mid, hi) = (&xc[n - ni - 1..], &xc[n - 1..], &xc[n + ni - 1..]);
+                let ax = st[0] * lo[0]
+                    + st[1] * lo[1]
+                    + st[2] * lo[2]
+                    + st[3] * mid[0]
+                    + st[4] * mid[1]
+                    + st[5] * mid[2]
+                    + st[6] * hi[0]
+                    + st[7] * hi[1]
+                    + st[8] * hi[2];
+                let r = b[p] - ax;
+                if let Some(o) = out[c].as_deref_mut() {
+                    o[ii] = r;
+                }
+                w = w.max((r / st[4]).abs());
+            }
+        }
+        w
+    };
+    let rows = a.coefs().par_chunks(nx).enumerate();
+    let worst = match out {
+        None => rows
+            .map(|(jj, arow)| row(jj, arow, std::array::from_fn(|_| None)))
+            .reduce(|| 0.0, f64::max),
+        Some(out) => {
+            let mut chunks: Vec<Vec<&mut [f64]>> = (0..a.ny()).map(|_| Vec::new()).collect();
+            for o in out.iter_mut() {
+                for (jj, ch) in o.chunks_mut(nx).enumerate() {
+                    chunks[jj].push(ch);
+                }
+            }
+            rows.zip(chunks.into_par_iter())
+                .map(|((jj, arow), ch)| {
+                    let mut it = ch.into_iter();
+                    row(jj, arow, std::array::from_fn(|_| it.next()))
+                })
+                .reduce(|| 0.0, f64::max)
+        }
+    };
+    worst / diam
+}
+
+fn add_interior(inner: &[f64], ni: usize, nx: usize, full: &mut [f64]) {
+    for (jj, row) in inner.chunks(nx).enumerate() {
+        let base = ni * (jj + 1) + 1;
+        for (f, d) in full[base..base + nx].iter_mut().zip(row) {
+            *f += d;
+        }
+    }
+}
+
+/// Solves the grid system [24] by Picard iteration [43, 44] from the start grid `x` (whose
+/// boundary nodes are the Dirichlet data and stay untouched).
+///
+/// Each step's linear systems start from the current iterate and are solved to the relative
+/// residual of the forcing term (see [`PicardParams::linear_forcing`]); the coordinates are
+/// solved in parallel with the operator's one setup. `place` names the block in errors.
+/// Non-convergence is not an error: it is reported in the returned [`PicardInfo`].
+pub fn solve<const D: usize>(
+    x: &mut Grid2<D>,
+    ctrl: &Control2,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    place: &str,
+) -> Result<PicardInfo> {
+    solve_timed(x, ctrl, solver, params, 0.0, place).map(|(info, _)| info)
+}
+
+/// [`solve`], also returning the shortest time (seconds) of one evaluation of the residual of
+/// [24] with its assembly on this grid, measured at every step: the work unit of
+/// `crate::elliptic::nested`. With `relative_stop > 0` the iteration also stops (converged) once the
+/// update falls below `relative_stop` times the first update: enough for a coarse level of
+/// nested iteration, whose own discretization error dwarfs the Picard tolerance.
+pub(crate) fn solve_timed<const D: usize>(
+    x: &mut Grid2<D>,
+    ctrl: &Control2,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    relative_stop: f64,
+    place: &str,
+) -> Result<(PicardInfo, f64)> {
+    let (ni, nj) = (x.ni(), x.nj());
+    if ni < 3 || nj < 3 {
+        return Err(Error::input(place, "a block needs at least 3 × 3 nodes"));
+    }
+    if (ctrl.ni(), ctrl.nj()) != (ni, nj) {
+        return Err(Error::input(
+            place,
+            "control functions and grid differ in size",
+        ));
+    }
+    if !ctrl.all_finite() {
+        return Err(Error::input(
+            place,
+            "the algebraic transformation is degenerate (non-finite control functions)",
+        ));
+    }
+    let solve_err = |source| Error::Solve {
+        place: place.to_string(),
+        source,
+    };
+    let (nx, ny) = (ni - 2, nj - 2);
+    let diam = x.diameter();
+    let mut a = Stencil9::zeros(nx, ny);
+    let mut rhs: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
+    // residuals, then corrections, of the coordinates (interior numbering)
+    let mut r: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
+    let mut u: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
+    let mut eval_secs = f64::INFINITY;
+    let mut evaluate =
+        |x: &Grid2<D>, a: &mut Stencil9, rhs: &mut [Vec<f64>; D], r: &mut [Vec<f64>; D]| {
+            let t0 = std::time::Instant::now();
+            assemble(x, ctrl, a, rhs);
+            let res = residual_scaled(x, a, rhs, diam, Some(r));
+            eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
+            res
+        };
+    let (history, converged) = picard::iterate(
+        params,
+        relative_stop,
+        place,
+        |small, ctl| {
+            let res = evaluate(x, &mut a, &mut rhs, &mut r);
+            if small {
+                solver.update(&a)
+            } else {
+                solver.setup(&a)
+            }
+            .map_err(solve_err)?;
+            let solver_ref: &dyn LinearSolver = solver;
+            let (infos, upd) =
+                picard::solve_corrections(&mut u, &r, |rc, uc| solver_ref.solve(rc, uc, ctl));
+            for (c, uc) in u.iter().enumerate() {
+                add_interior(uc, ni, nx, x.coord_mut(c));
+            }
+            Ok(picard::StepWork {
+                residual: res,
+                solves: infos,
+                update: if x.all_finite() { upd / diam } else { f64::NAN },
+            })
+        },
+        &mut |_, _| {},
+    )?;
+    let final_residual = evaluate(x, &mut a, &mut rhs, &mut r);
+    let info = picard::info(solver.name(), params, history, converged, final_residual);
+    Ok((info, eval_secs))
+}
+
+/// Convenience: the start grid with the boundary of `b` and the solve of [24] from it.
+pub fn solve_from<const D: usize>(
+    b: &Boundary2<D>,
+    start: Grid2<D>,
+    ctrl: &Control2,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    place: &str,
+) -> Result<(Grid2<D>, PicardInfo)> {
+    let mut x = start;
+    b.apply_to(&mut x);
+    let info = solve(&mut x, ctrl, solver, params, place)?;
+    Ok((x, info))
+}

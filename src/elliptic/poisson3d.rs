@@ -1,0 +1,318 @@
+//! The volume grid system [86]–[88] discretized on the 19-point stencil and solved by Picard
+//! iteration (METHOD.md §6).
+//!
+//! Each Picard step freezes α^ij (J² times the contravariant metric, from the covariant
+//! metric g_ij of the current iterate by central differences) and the first-derivative
+//! coefficients Σ_ij α^ij P^k_ij, assembles the 19-point operator of
+//! `Σ_ij α^ij x_{ξiξj} + Σ_k (Σ_ij α^ij P^k_ij) x_{ξk} = 0` (central differences in index space;
+//! mixed derivatives by the 4-corner formula that [`crate::algebraic::control3d`] uses, so the
+//! tensor-product box is an exact discrete solution), and solves it once per coordinate with
+//! the same operator. The steps, the stopping rule and the history are those of the 2D
+//! system (`src/elliptic/picard.rs`).
+//!
+//! The linear systems are solved in correction form, A δ = b − A x_k from δ = 0, and only as
+//! accurately as the step needs: the inexact Picard iteration of [`crate::elliptic::poisson2d`], with the
+//! same forcing term η = clamp(0.5 ρ, linear_tolerance, linear_forcing) (ρ the observed Picard
+//! contraction; `PicardParams::linear_forcing`, 0 = every step to `linear_tolerance`). A step
+//! then costs a few Bi-CGSTAB iterations instead of a solve to 1e-10, and the fixed point, the
+//! discrete solution of [86], is unchanged. `solve_timed` also measures the work unit of
+//! nested iteration ([`crate::elliptic::nested3d`]).
+
+use crate::algebraic::control3d::Control3;
+use crate::elliptic::picard;
+use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep};
+use crate::solve::stencil19::{Stencil19, C, OFFSETS};
+use crate::solve::LinearSolver3;
+use crate::{Error, Grid3, Result};
+use rayon::prelude::*;
+
+/// The six α^ij of [88] in the order 11, 12, 13, 22, 23, 33, from g_ij.
+#[inline]
+pub fn alphas(g: [[f64; 3]; 3]) -> [f64; 6] {
+    [
+        g[1][1] * g[2][2] - g[1][2] * g[1][2],
+        g[0][2] * g[1][2] - g[0][1] * g[2][2],
+        g[0][1] * g[1][2] - g[0][2] * g[1][1],
+        g[0][0] * g[2][2] - g[0][2] * g[0][2],
+        g[0][2] * g[0][1] - g[0][0] * g[1][2],
+        g[0][0] * g[1][1] - g[0][1] * g[0][1],
+    ]
+}
+
+/// Assembles the frozen 19-point operator of [86] at iterate `x` and the right-hand sides
+/// (one per coordinate) that carry the Dirichlet boundary values. Rows are multiplied by −1 so
+/// that the diagonal 2(α11 + α22 + α33) is positive.
+pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f64>; 3]) {
+    let [ni, nj, nk] = x.dims();
+    let [nx, ny, nz] = [ni - 2, nj - 2, nk - 2];
+    assert_eq!(a.dims(), [nx, ny, nz]);
+    let (plane, uplane) = (ni * nj, nx * ny);
+    let st = [1isize, ni as isize, plane as isize];
+    let xs = x.coords();
+    // For each slot: its nonzero axes (t, t) for a face neighbour, (p, r) for an edge one.
+    let axes: [[usize; 2]; 19] = std::array::from_fn(|m| {
+        let o = OFFSETS[m];
+        let nz: Vec<usize> = (0..3).filter(|&t| o[t] != 0).collect();
+        match nz.len() {
+            1 => [nz[0], nz[0]],
+            2 => [nz[0], nz[1]],
+            _ => [0, 0],
+        }
+    });
+    let [r0, r1, r2] = rhs;
+    a.coefs_mut()
+        .par_chunks_mut(uplane)
+        .zip(r0.par_chunks_mut(uplane))
+        .zip(r1.par_chunks_mut(uplane))
+        .zip(r2.par_chunks_mut(uplane))
+        .enumerate()
+        .for_each(|(kk, (((arow, b0), b1), b2))| {
+            let k = kk + 1;
+            let mut bs = [b0, b1, b2];
+            for jj in 0..ny {
+                let j = jj + 1;
+                for ii in 0..nx {
+                    let i = ii + 1;
+                    let n = i + ni * j + plane * k;
+                    let q = ii + nx * jj;
+                    // Covariant metric g_ab = x_a · x_b, central differences.
+                    let mut d = [[0.0; 3]; 3];
+                    for (c, xc) in xs.iter().enumerate() {
+                        for (ax, s) in st.iter().enumerate() {
+                            d[c][ax] = 0.5
+                                * (xc[(n as isize + s) as usize] - xc[(n as isize - s) as usize]);
+                        }
+                    }
+                    let g: [[f64; 3]; 3] = std::array::from_fn(|p| {
+                        std::array::from_fn(|r| (0..3).map(|c| d[c][p] * d[c][r]).sum())
+                    });
+                    let al = alphas(g);
+                    let pk = ctrl.at(n);
+                    let w = [1.0, 2.0, 2.0, 1.0, 2.0, 1.0];
+                    let sk: [f64; 3] =
+                        std::array::from_fn(|c| (0..6).map(|m| w[m] * al[m] * pk[3 * m + c]).sum());
+                    let diag = [al[0], al[3], al[5]];
+                    let mixed = |p: usize, r: usize| al[[[9, 1, 2], [1, 9, 4], [2, 4, 9]][p][r]];
+                    let row = &mut arow[q];
+                    row[C] = 2.0 * (diag[0] + diag[1] + diag[2]);
+                    for (m, o) in OFFSETS.iter().enumerate().skip(1) {
+                        let [p, r] = axes[m];
+                        row[m] = if p == r {
+                            -(diag[p] + 0.5 * o[p] as f64 * sk[p])
+                        } else {
+                            -0.5 * mixed(p, r) * (o[p] * o[r]) as f64
+                        };
+                    }
+                    // Known boundary neighbours go to the right-hand side.
+                    for b in bs.iter_mut() {
+                        b[q] = 0.0;
+                    }
+                    if i == 1 || j == 1 || k == 1 || i == ni - 2 || j == nj - 2 || k == nk - 2 {
+                        for (m, o) in OFFSETS.iter().enumerate().skip(1) {
+                            let (ib, jb, kb) = (
+                                (i as isize + o[0] as isize) as usize,
+                                (j as isize + o[1] as isize) as usize,
+                                (k as isize + o[2] as isize) as usize,
+                            );
+                            if ib == 0
+                                || jb == 0
+                                || kb == 0
+                                || ib == ni - 1
+                                || jb == nj - 1
+                                || kb == nk - 1
+                            {
+                                let nb = ib + ni * jb + plane * kb;
+                                for (b, xc) in bs.iter_mut().zip(xs.iter()) {
+                                    b[q] -= row[m] * xc[nb];
+                                }
+                                row[m] = 0.0;
+                            }
+                        }
+                    }
+                }
+            }
+        });
+}
+
+/// Residual of [86] at grid `x`: the largest |A x − b| over interior nodes, each row divided
+/// by its diagonal and by the domain diameter (as [`crate::elliptic::poisson2d::residual`]).
+pub fn residual(x: &Grid3, a: &Stencil19, rhs: &[Vec<f64>; 3], diam: f64) -> f64 {
+    let mut r: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; a.len()]);
+    let mut u = vec![0.0; a.len()];
+    residual_into(x, a, rhs, diam, &mut r, &mut u)
+}
+
+/// [`residual`] that also stores `b − A x` per coordinate in `r` (interior numbering), with
+/// `u` as scratch for the gathered coordinates: no allocation.
+fn residual_into(
+    x: &Grid3,
+    a: &Stencil19,
+    rhs: &[Vec<f64>; 3],
+    diam: f64,
+    r: &mut [Vec<f64>; 3],
+    u: &mut [f64],
+) -> f64 {
+    let mut worst = 0.0f64;
+    for (c, (b, rc)) in rhs.iter().zip(r.iter_mut()).enumerate() {
+        gather(x, c, u);
+        a.residual(b, u, rc);
+        let w = rc
+            .par_iter()
+            .zip(a.coefs())
+            .map(|(rv, row)| (rv / row[C]).abs())
+            .reduce(|| 0.0, f64::max);
+        worst = worst.max(w);
+    }
+    worst / diam
+}
+
+/// Interior values of coordinate c into `out` (unknown order).
+pub fn gather(x: &Grid3, c: usize, out: &mut [f64]) {
+    let [ni, nj, _] = x.dims();
+    let nx = ni - 2;
+    let full = x.coord(c);
+    for (q, row) in out.chunks_mut(nx).enumerate() {
+        let (jj, kk) = (q % (nj - 2), q / (nj - 2));
+        let base = 1 + ni * (jj + 1) + ni * nj * (kk + 1);
+        row.copy_from_slice(&full[base..base + nx]);
+    }
+}
+
+/// Adds the interior correction `inner` to coordinate c of `x`.
+fn add_interior(x: &mut Grid3, c: usize, inner: &[f64]) {
+    let [ni, nj, _] = x.dims();
+    let nx = ni - 2;
+    let full = &mut x.coords_mut()[c];
+    for (q, row) in inner.chunks(nx).enumerate() {
+        let (jj, kk) = (q % (nj - 2), q / (nj - 2));
+        let base = 1 + ni * (jj + 1) + ni * nj * (kk + 1);
+        for (o, d) in full[base..base + nx].iter_mut().zip(row) {
+            *o += d;
+        }
+    }
+}
+
+/// Solves the grid system [86] by Picard iteration from the start grid `x` (whose boundary
+/// nodes are the Dirichlet data and stay untouched). `progress` is called after every step
+/// with the step number and its record. Non-convergence is not an error: it is reported in
+/// the returned [`PicardInfo`].
+///
+/// Each step solves its three linear systems in correction form, A δ = b − A x_k from δ = 0,
+/// in parallel with the operator's one setup, and only to the relative residual of the
+/// forcing term of the inexact Picard iteration (`PicardParams::linear_forcing`, the rule of
+/// [`crate::elliptic::poisson2d`]): the fixed point is that of the exact iteration, since the linear
+/// error is relative to the Picard residual, which vanishes there.
+pub fn solve(
+    x: &mut Grid3,
+    ctrl: &Control3,
+    solver: &mut dyn LinearSolver3,
+    params: &PicardParams,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<PicardInfo> {
+    solve_timed(x, ctrl, solver, params, 0.0, place, progress).map(|(info, _)| info)
+}
+
+/// [`solve`], also returning the shortest time (seconds) of one evaluation of the residual of
+/// [86] with its assembly ([`assemble`] + residual) on this grid, measured at every step: the
+/// work unit of [`crate::elliptic::nested3d`]. With `relative_stop > 0` the iteration also stops
+/// (converged) once the update falls below `relative_stop` times the first update (a coarse
+/// level of nested iteration).
+pub(crate) fn solve_timed(
+    x: &mut Grid3,
+    ctrl: &Control3,
+    solver: &mut dyn LinearSolver3,
+    params: &PicardParams,
+    relative_stop: f64,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<(PicardInfo, f64)> {
+    let dims = x.dims();
+    if dims.iter().any(|&n| n < 3) {
+        return Err(Error::input(
+            place,
+            "a volume block needs at least 3 × 3 × 3 nodes",
+        ));
+    }
+    if ctrl.dims() != dims {
+        return Err(Error::input(
+            place,
+            "control functions and grid differ in size",
+        ));
+    }
+    if !ctrl.all_finite() {
+        return Err(Error::input(
+            place,
+            "the algebraic transformation is degenerate (non-finite control functions)",
+        ));
+    }
+    let diam = diameter(x);
+    let mut a = Stencil19::zeros(dims[0] - 2, dims[1] - 2, dims[2] - 2);
+    let n = a.len();
+    let mut rhs: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n]);
+    // residuals b − A x_k, then corrections δ, of the coordinates (interior numbering)
+    let mut r: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n]);
+    let mut u: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n]);
+    let mut scratch = vec![0.0; n];
+    let solve_err = |source| Error::Solve {
+        place: place.to_string(),
+        source,
+    };
+    let mut eval_secs = f64::INFINITY;
+    let mut evaluate = |x: &Grid3,
+                        a: &mut Stencil19,
+                        rhs: &mut [Vec<f64>; 3],
+                        r: &mut [Vec<f64>; 3],
+                        scratch: &mut [f64]| {
+        let t0 = std::time::Instant::now();
+        assemble(x, ctrl, a, rhs);
+        let res = residual_into(x, a, rhs, diam, r, scratch);
+        eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
+        res
+    };
+    let (history, converged) = picard::iterate(
+        params,
+        relative_stop,
+        place,
+        |small, ctl| {
+            let res = evaluate(x, &mut a, &mut rhs, &mut r, &mut scratch);
+            if small {
+                solver.update(&a)
+            } else {
+                solver.setup(&a)
+            }
+            .map_err(solve_err)?;
+            let sref: &dyn LinearSolver3 = solver;
+            let (infos, upd) =
+                picard::solve_corrections(&mut u, &r, |rc, uc| sref.solve(rc, uc, ctl));
+            for (c, uc) in u.iter().enumerate() {
+                add_interior(x, c, uc);
+            }
+            Ok(picard::StepWork {
+                residual: res,
+                solves: infos,
+                update: upd / diam,
+            })
+        },
+        progress,
+    )?;
+    let final_residual = evaluate(x, &mut a, &mut rhs, &mut r, &mut scratch);
+    let info = picard::info(solver.name(), params, history, converged, final_residual);
+    Ok((info, eval_secs))
+}
+
+/// Bounding-box diagonal of a volume grid.
+pub(crate) fn diameter(x: &Grid3) -> f64 {
+    x.coords()
+        .iter()
+        .map(|c| {
+            let (lo, hi) = c
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                    (lo.min(v), hi.max(v))
+                });
+            (hi - lo).powi(2)
+        })
+        .sum::<f64>()
+        .sqrt()
+}

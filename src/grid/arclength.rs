@@ -1,0 +1,85 @@
+//! Normalized arclength edge functions s_E3, s_E4, t_E1, t_E2, eqs. [30]–[38].
+
+use crate::grid::boundary::Boundary2;
+use crate::grid::Edge;
+
+/// Edge functions of the algebraic transformation: monotone maps from the computational
+/// coordinate of an edge's nodes to [0, 1] (METHOD.md §1). `s_e3[i]`, `s_e4[i]` for i = 0..=N;
+/// `t_e1[j]`, `t_e2[j]` for j = 0..=M.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EdgeFunctions {
+    pub s_e3: Vec<f64>,
+    pub s_e4: Vec<f64>,
+    pub t_e1: Vec<f64>,
+    pub t_e2: Vec<f64>,
+}
+
+/// Normalized cumulative chord length of a point list, eqs. [30]–[38]: 0 at the first point,
+/// exactly 1 at the last.
+pub fn normalized_arclength<const D: usize>(pts: &[[f64; D]]) -> Vec<f64> {
+    let mut s = Vec::with_capacity(pts.len());
+    let mut acc = 0.0;
+    s.push(0.0);
+    for w in pts.windows(2) {
+        acc += w[0]
+            .iter()
+            .zip(&w[1])
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt();
+        s.push(acc);
+    }
+    for v in s.iter_mut() {
+        *v /= acc;
+    }
+    *s.last_mut().unwrap() = 1.0;
+    s
+}
+
+impl EdgeFunctions {
+    /// The arclength edge functions of a boundary, eqs. [30]–[38].
+    pub fn arclength<const D: usize>(b: &Boundary2<D>) -> Self {
+        EdgeFunctions {
+            s_e3: normalized_arclength(b.edge(Edge::E3)),
+            s_e4: normalized_arclength(b.edge(Edge::E4)),
+            t_e1: normalized_arclength(b.edge(Edge::E1)),
+            t_e2: normalized_arclength(b.edge(Edge::E2)),
+        }
+    }
+
+    /// Uniform edge functions (the identity map; gives zero control functions).
+    pub fn uniform(ni: usize, nj: usize) -> Self {
+        let u = |n: usize| {
+            (0..n)
+                .map(|k| k as f64 / (n - 1) as f64)
+                .collect::<Vec<_>>()
+        };
+        EdgeFunctions {
+            s_e3: u(ni),
+            s_e4: u(ni),
+            t_e1: u(nj),
+            t_e2: u(nj),
+        }
+    }
+
+    /// Nodes along i.
+    pub fn ni(&self) -> usize {
+        self.s_e3.len()
+    }
+
+    /// Nodes along j.
+    pub fn nj(&self) -> usize {
+        self.t_e1.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arclength_of_unequal_spacing() {
+        let s = normalized_arclength(&[[0.0, 0.0], [1.0, 0.0], [1.0, 3.0]]);
+        assert_eq!(s, vec![0.0, 0.25, 1.0]);
+    }
+}

@@ -1,0 +1,187 @@
+//! Runs of volume blocks: generation of a case's `[[volume]]` (with its wall spacing, if any),
+//! the transfinite start grid, and the regridding of volume blocks of existing grids.
+
+use crate::algebraic::ControlKind;
+use crate::case::volume::{volume_faces, volume_name, volume_place, wall_face};
+use crate::case::LoadedCase;
+use crate::elliptic::picard::{PicardInfo, PicardParams};
+use crate::elliptic::volume::{grid_volume, progress_enabled};
+use crate::elliptic::wall::{check_kind, grid_volume_wall_with, wall_targets, WallOptions};
+use crate::elliptic::wall_normal::{wall_figure, WallFigure};
+use crate::grid::faces::{transfinite, Faces};
+use crate::io::Block;
+use crate::quality::quality3d::{quality3d, QualityReport3};
+use crate::solve::select::for_block;
+use crate::{Error, Grid3, Result};
+use serde::Serialize;
+use std::time::Instant;
+
+/// Report of one volume block: the solve history and the 3D quality.
+#[derive(Clone, Debug, Serialize)]
+pub struct VolumeReport {
+    pub name: String,
+    pub ni: usize,
+    pub nj: usize,
+    pub nk: usize,
+    /// Wall-clock seconds of the block's generation.
+    pub seconds: f64,
+    pub picard: PicardInfo,
+    pub quality: QualityReport3,
+    /// With `wall`: the angles of the first grid lines to the wall normal and the wall-normal
+    /// distance of the first off-wall nodes over the prescribed spacing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall: Option<WallFigure>,
+}
+
+/// A terminal progress bar for a Picard solve, if enabled and stderr is a terminal.
+fn progress_bar(name: &str, max: usize) -> Option<indicatif::ProgressBar> {
+    use std::io::IsTerminal;
+    if !progress_enabled() || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let pb = indicatif::ProgressBar::new(max as u64);
+    pb.set_style(
+        indicatif::ProgressStyle::with_template("{prefix} Picard {pos:>3} {msg} [{elapsed}]")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    pb.set_prefix(format!("volume '{name}'"));
+    Some(pb)
+}
+
+/// Grids volume k of a case: faces, transfinite start, Picard solve, 3D quality.
+pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, VolumeReport)> {
+    let t0 = Instant::now();
+    let spec = &case.case;
+    let v = &spec.volumes[k];
+    let place = volume_place(case, k);
+    let name = volume_name(case, k);
+    let params = &spec.solver.picard;
+    let faces = volume_faces(case, k, params)?;
+    let mut solver =
+        for_block(&v.linear, [v.ni, v.nj, v.nk]).map_err(|m| Error::input(&place, m))?;
+    let pb = progress_bar(&name, params.max_steps);
+    let mut cb = |n: usize, s: &crate::elliptic::picard::PicardStep| {
+        if let Some(pb) = &pb {
+            pb.set_position(n as u64);
+            pb.set_message(format!(
+                "update {:.2e} residual {:.2e}",
+                s.update, s.residual
+            ));
+        }
+    };
+    let wall = wall_face(v, &place)?;
+    let r = match wall {
+        Some(w) => {
+            check_kind(spec.solver.control, &place)?;
+            let opts = WallOptions {
+                orthogonal: v
+                    .wall_orthogonal
+                    .unwrap_or(WallOptions::default().orthogonal),
+            };
+            grid_volume_wall_with(&faces, w, opts, solver.as_mut(), params, &place, &mut cb)?
+        }
+        None if v.wall_orthogonal.is_some() => {
+            return Err(Error::input(
+                &place,
+                "wall_orthogonal needs wall = \"F1\" … \"F6\"",
+            ))
+        }
+        None => grid_volume(
+            &faces,
+            None,
+            spec.solver.control,
+            solver.as_mut(),
+            params,
+            &place,
+            &mut cb,
+        )?,
+    };
+    if let Some(pb) = pb {
+        pb.finish_and_clear();
+    }
+    let q = quality3d(&r.grid);
+    let wall = match wall {
+        Some(w) => Some(wall_figure(&r.grid, w, &wall_targets(&faces, w, &place)?)),
+        None => None,
+    };
+    let [ni, nj, nk] = r.grid.dims();
+    let rep = VolumeReport {
+        name: name.clone(),
+        ni,
+        nj,
+        nk,
+        seconds: t0.elapsed().as_secs_f64(),
+        picard: r.picard,
+        quality: q,
+        wall,
+    };
+    Ok((name, Block::Volume(r.grid), rep))
+}
+
+/// The transfinite start grid of volume k.
+pub fn start_volume(case: &LoadedCase, k: usize) -> Result<(String, Block)> {
+    let faces = volume_faces(case, k, &case.case.solver.picard)?;
+    Ok((volume_name(case, k), Block::Volume(transfinite(&faces))))
+}
+
+/// Regrids a volume block of an existing grid keeping its boundary nodes bit for bit: the
+/// interior is the start grid if it is fold-free, else the transfinite one. `linear`:
+/// "direct" (faer LU, used only up to 40 000 interior nodes; larger blocks use "auto"),
+/// "auto", "bicgstab" or "multigrid" ([`crate::solve::select::for_block`]). Returns the grid, the
+/// history, the start used and the solver's name.
+pub fn regrid_volume(
+    g: &Grid3,
+    linear: &str,
+    control: ControlKind,
+    params: &PicardParams,
+    place: &str,
+) -> Result<(Grid3, PicardInfo, String)> {
+    let d = g.dims();
+    if d.iter().any(|&n| n < 3) {
+        return Err(Error::input(
+            place,
+            format!("a volume block needs at least 3 nodes each way, got {d:?}"),
+        ));
+    }
+    if g.coords().iter().any(|c| c.iter().any(|v| !v.is_finite())) {
+        return Err(Error::input(place, "the block has non-finite coordinates"));
+    }
+    let faces = Faces::from_grid(g);
+    let inner = (d[0] - 2) * (d[1] - 2) * (d[2] - 2);
+    let name = match linear {
+        "direct" if inner <= 40_000 => "direct",
+        "direct" => "auto",
+        o => o,
+    };
+    let mut solver = for_block(name, d).map_err(|m| Error::input(place, m))?;
+    let valid = !quality3d(g).is_folded();
+    let start = valid.then(|| g.clone());
+    let pb = progress_bar(place, params.max_steps);
+    let mut cb = |n: usize, s: &crate::elliptic::picard::PicardStep| {
+        if let Some(pb) = &pb {
+            pb.set_position(n as u64);
+            pb.set_message(format!(
+                "update {:.2e} residual {:.2e}",
+                s.update, s.residual
+            ));
+        }
+    };
+    let r = grid_volume(
+        &faces,
+        start,
+        control,
+        solver.as_mut(),
+        params,
+        place,
+        &mut cb,
+    )?;
+    if let Some(pb) = pb {
+        pb.finish_and_clear();
+    }
+    let how = if valid {
+        "existing interior"
+    } else {
+        "transfinite"
+    };
+    Ok((r.grid, r.picard, how.into()))
+}

@@ -1,0 +1,467 @@
+//! The measures of a volume grid's quality report (definitions in [`super`]): corner
+//! Jacobians and skewness per cell, orientation, growth ratios along grid lines, orthogonality
+//! and first heights at the faces, and per-cell arrays for VTK.
+
+use rayon::prelude::*;
+
+use crate::quality::quality3d::{FaceQuality, QualityReport3, MAX_FIRST_FOLDED};
+use crate::Grid3;
+
+type V = [f64; 3];
+#[inline]
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+#[inline]
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+#[inline]
+fn cross(a: V, b: V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+#[inline]
+fn norm(a: V) -> f64 {
+    dot(a, a).sqrt()
+}
+#[inline]
+fn angle(a: V, b: V) -> f64 {
+    norm(cross(a, b)).atan2(dot(a, b)).to_degrees()
+}
+fn nmin(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.min(b)
+    }
+}
+fn nmax(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
+}
+fn growth(a: f64, b: f64) -> f64 {
+    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+    if hi == 0.0 {
+        1.0
+    } else {
+        hi / lo
+    }
+}
+
+/// Per-cell measures: (min corner Jacobian, min scaled Jacobian, skewness, aspect ratio), with
+/// the Jacobians multiplied by `sign`.
+fn eval_cell(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> [f64; 4] {
+    let x: [V; 8] = std::array::from_fn(|c| g.point(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)));
+    let (mut jmin, mut smin) = (f64::INFINITY, f64::INFINITY);
+    for (c, &xc) in x.iter().enumerate() {
+        let e: [V; 3] = std::array::from_fn(|a| {
+            let d = sub(x[c ^ (1 << a)], xc);
+            if (c >> a) & 1 == 1 {
+                [-d[0], -d[1], -d[2]]
+            } else {
+                d
+            }
+        });
+        let jac = sign * dot(e[0], cross(e[1], e[2]));
+        let l = norm(e[0]) * norm(e[1]) * norm(e[2]);
+        jmin = nmin(jmin, jac);
+        smin = nmin(smin, if l > 0.0 { jac / l } else { 0.0 });
+    }
+    // The six faces as corner cycles of cell-corner numbers (bit 0 = i, 1 = j, 2 = k).
+    const FACES: [[usize; 4]; 6] = [
+        [0, 2, 6, 4],
+        [1, 3, 7, 5],
+        [0, 1, 5, 4],
+        [2, 3, 7, 6],
+        [0, 1, 3, 2],
+        [4, 5, 7, 6],
+    ];
+    let mut skew = 0.0f64;
+    for f in FACES {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for q in 0..4 {
+            let p = x[f[q]];
+            let th = angle(sub(x[f[(q + 1) % 4]], p), sub(x[f[(q + 3) % 4]], p));
+            lo = nmin(lo, th);
+            hi = nmax(hi, th);
+        }
+        skew = nmax(skew, nmax((hi - 90.0) / 90.0, (90.0 - lo) / 90.0));
+    }
+    let (mut emin, mut emax) = (f64::INFINITY, 0.0f64);
+    for c in 0..8 {
+        for a in 0..3 {
+            if (c >> a) & 1 == 0 {
+                let l = norm(sub(x[c | (1 << a)], x[c]));
+                emin = nmin(emin, l);
+                emax = nmax(emax, l);
+            }
+        }
+    }
+    [jmin, smin, skew, emax / emin]
+}
+
+/// Smallest block-edge dihedral (degrees) counted as flat: [`flat_edge_cell`].
+pub const FLAT_EDGE_DEG: f64 = 179.0;
+
+/// True if every non-positive corner Jacobian of cell (i, j, k) (relative to `sign`) sits at a
+/// node on a block edge where the two block faces meeting there are flat: dihedral ≥
+/// [`FLAT_EDGE_DEG`], measured at that node between the cell edges leaving it in the two faces,
+/// projected normal to the block edge. Such a corner has three (nearly) coplanar edges by the
+/// block's topology (the 180° edge where two faces of a C–O block share one plane), not by a
+/// fold; its scaled Jacobian is at most sin 1° in size. False if no corner is non-positive, or
+/// a NaN, a zero-length edge or any other non-positive corner is present.
+pub fn flat_edge_cell(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> bool {
+    let dims = g.dims();
+    let x: [V; 8] = std::array::from_fn(|c| g.point(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)));
+    let mut any = false;
+    for (c, &xc) in x.iter().enumerate() {
+        let raw: [V; 3] = std::array::from_fn(|a| sub(x[c ^ (1 << a)], xc));
+        let e: [V; 3] = std::array::from_fn(|a| {
+            if (c >> a) & 1 == 1 {
+                [-raw[a][0], -raw[a][1], -raw[a][2]]
+            } else {
+                raw[a]
+            }
+        });
+        let jac = sign * dot(e[0], cross(e[1], e[2]));
+        if jac > 0.0 {
+            continue;
+        }
+        if jac.is_nan() {
+            return false;
+        }
+        any = true;
+        let n = [i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)];
+        let ext: [bool; 3] = std::array::from_fn(|a| n[a] == 0 || n[a] + 1 == dims[a]);
+        // Along a block edge of axis d the two other axes are at their ends; the cell edges
+        // along them lie in the two faces that meet at the block edge.
+        let flat = (0..3).any(|d| {
+            let (a, b) = ((d + 1) % 3, (d + 2) % 3);
+            if !(ext[a] && ext[b]) {
+                return false;
+            }
+            let t = raw[d];
+            let tt = dot(t, t);
+            if tt <= 0.0 {
+                return false;
+            }
+            let perp = |v: V| {
+                let s = dot(v, t) / tt;
+                [v[0] - s * t[0], v[1] - s * t[1], v[2] - s * t[2]]
+            };
+            let (u, w) = (perp(raw[a]), perp(raw[b]));
+            if norm(u) <= 0.0 || norm(w) <= 0.0 {
+                return false;
+            }
+            angle(u, w) >= FLAT_EDGE_DEG
+        });
+        if !flat {
+            return false;
+        }
+    }
+    any
+}
+
+/// Majority sign of the corner Jacobians (+1 right-handed, −1 left-handed).
+fn orientation(g: &Grid3) -> f64 {
+    let [ni, nj, nk] = g.dims();
+    let (pos, neg) = (0..nk - 1)
+        .into_par_iter()
+        .map(|k| {
+            let (mut p, mut n) = (0usize, 0usize);
+            for j in 0..nj - 1 {
+                for i in 0..ni - 1 {
+                    let jac = eval_cell(g, i, j, k, 1.0)[0];
+                    p += usize::from(jac > 0.0);
+                    n += usize::from(jac < 0.0);
+                }
+            }
+            (p, n)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    if neg > pos {
+        -1.0
+    } else {
+        1.0
+    }
+}
+
+struct Acc {
+    jmin: f64,
+    jmax: f64,
+    smin: f64,
+    skew_max: f64,
+    skew_sum: f64,
+    aspect: f64,
+    folded: usize,
+    first: Vec<[usize; 3]>,
+    flat: usize,
+    first_flat: Vec<[usize; 3]>,
+    /// Smallest scaled Jacobian over the cells that are not flat-edge cells.
+    smin_regular: f64,
+}
+
+impl Acc {
+    fn new() -> Self {
+        Acc {
+            jmin: f64::INFINITY,
+            jmax: f64::NEG_INFINITY,
+            smin: f64::INFINITY,
+            skew_max: f64::NEG_INFINITY,
+            skew_sum: 0.0,
+            aspect: f64::NEG_INFINITY,
+            folded: 0,
+            first: vec![],
+            flat: 0,
+            first_flat: vec![],
+            smin_regular: f64::INFINITY,
+        }
+    }
+    fn merge(mut self, b: Acc) -> Acc {
+        self.jmin = nmin(self.jmin, b.jmin);
+        self.jmax = nmax(self.jmax, b.jmax);
+        self.smin = nmin(self.smin, b.smin);
+        self.skew_max = nmax(self.skew_max, b.skew_max);
+        self.skew_sum += b.skew_sum;
+        self.aspect = nmax(self.aspect, b.aspect);
+        self.folded += b.folded;
+        let room = MAX_FIRST_FOLDED - self.first.len();
+        self.first.extend(b.first.into_iter().take(room));
+        self.flat += b.flat;
+        let room = MAX_FIRST_FOLDED - self.first_flat.len();
+        self.first_flat.extend(b.first_flat.into_iter().take(room));
+        self.smin_regular = nmin(self.smin_regular, b.smin_regular);
+        self
+    }
+}
+
+/// Growth ratios and spacing extremes along lines of direction `a` (0 = i, 1 = j, 2 = k).
+fn lines(g: &Grid3, a: usize) -> (f64, f64, f64) {
+    let d = g.dims();
+    let st = [1, d[0], d[0] * d[1]][a];
+    let x = g.coords();
+    let h = |p: usize| {
+        let v: V = std::array::from_fn(|c| x[c][p + st] - x[c][p]);
+        norm(v)
+    };
+    (0..d.iter().product::<usize>())
+        .into_par_iter()
+        .filter(|&p| [p % d[0], (p / d[0]) % d[1], p / (d[0] * d[1])][a] + 1 < d[a])
+        .map(|p| {
+            let hp = h(p);
+            let idx = [p % d[0], (p / d[0]) % d[1], p / (d[0] * d[1])][a];
+            let gr = if idx + 2 < d[a] {
+                growth(hp, h(p + st))
+            } else {
+                1.0
+            };
+            (gr, hp, hp)
+        })
+        .reduce(
+            || (1.0, f64::INFINITY, 0.0),
+            |u, v| (nmax(u.0, v.0), nmin(u.1, v.1), nmax(u.2, v.2)),
+        )
+}
+
+/// Orthogonality and first heights at face f (0 = F1 … 5 = F6).
+fn face_quality(g: &Grid3, f: usize) -> FaceQuality {
+    let d = g.dims();
+    let axis = f / 2;
+    let (ta, tb) = match axis {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    };
+    let wall = if f % 2 == 0 { 0 } else { d[axis] - 1 };
+    let inward: isize = if f % 2 == 0 { 1 } else { -1 };
+    let at = |n: [usize; 3]| g.point(n[0], n[1], n[2]);
+    let r = (1..d[tb].saturating_sub(1))
+        .into_par_iter()
+        .map(|b| {
+            let (mut mx, mut sum, mut cnt, mut hmin, mut hmax) = (
+                f64::NEG_INFINITY,
+                0.0,
+                0usize,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            );
+            for a in 1..d[ta] - 1 {
+                let mut n = [0; 3];
+                n[axis] = wall;
+                n[ta] = a;
+                n[tb] = b;
+                let mut q = n;
+                q[axis] = (wall as isize + inward) as usize;
+                let (mut ap, mut am, mut bp, mut bm) = (n, n, n, n);
+                ap[ta] += 1;
+                am[ta] -= 1;
+                bp[tb] += 1;
+                bm[tb] -= 1;
+                let nrm = cross(sub(at(ap), at(am)), sub(at(bp), at(bm)));
+                let off = sub(at(q), at(n));
+                let c = dot(off, nrm).abs() / (norm(off) * norm(nrm));
+                let dev = if c.is_finite() {
+                    c.min(1.0).acos().to_degrees()
+                } else {
+                    90.0
+                };
+                mx = nmax(mx, dev);
+                sum += dev;
+                cnt += 1;
+                hmin = nmin(hmin, norm(off));
+                hmax = nmax(hmax, norm(off));
+            }
+            (mx, sum, cnt, hmin, hmax)
+        })
+        .reduce(
+            || (f64::NEG_INFINITY, 0.0, 0, f64::INFINITY, f64::NEG_INFINITY),
+            |u, v| {
+                (
+                    nmax(u.0, v.0),
+                    u.1 + v.1,
+                    u.2 + v.2,
+                    nmin(u.3, v.3),
+                    nmax(u.4, v.4),
+                )
+            },
+        );
+    let nan = f64::NAN;
+    let ok = r.2 > 0;
+    FaceQuality {
+        face: format!("F{}", f + 1),
+        nodes: r.2,
+        orthogonality_max_deg: if ok { r.0 } else { nan },
+        orthogonality_mean_deg: if ok { r.1 / r.2 as f64 } else { nan },
+        first_height_min: if ok { r.3 } else { nan },
+        first_height_max: if ok { r.4 } else { nan },
+    }
+}
+
+/// The quality report of a volume grid (module docs). Never panics; grids smaller than
+/// 2 × 2 × 2 give `cells = 0` and NaN metrics.
+pub fn quality3d(g: &Grid3) -> QualityReport3 {
+    let [ni, nj, nk] = g.dims();
+    let nan = f64::NAN;
+    let cells = if ni < 2 || nj < 2 || nk < 2 {
+        0
+    } else {
+        (ni - 1) * (nj - 1) * (nk - 1)
+    };
+    let mut rep = QualityReport3 {
+        ni,
+        nj,
+        nk,
+        cells,
+        orientation: "right-handed".into(),
+        jacobian_min: nan,
+        jacobian_max: nan,
+        scaled_jacobian_min: nan,
+        folded_cells: 0,
+        first_folded: vec![],
+        flat_edge_cells: 0,
+        first_flat_edge: vec![],
+        scaled_jacobian_min_regular: nan,
+        skewness_max: nan,
+        skewness_mean: nan,
+        faces: vec![],
+        aspect_ratio_max: nan,
+        growth_i_max: nan,
+        growth_j_max: nan,
+        growth_k_max: nan,
+        min_spacing: nan,
+        max_spacing: nan,
+    };
+    if cells == 0 {
+        return rep;
+    }
+    let sign = orientation(g);
+    if sign < 0.0 {
+        rep.orientation = "left-handed".into();
+    }
+    let acc = (0..nk - 1)
+        .into_par_iter()
+        .map(|k| {
+            let mut a = Acc::new();
+            for j in 0..nj - 1 {
+                for i in 0..ni - 1 {
+                    let [jac, s, sk, ar] = eval_cell(g, i, j, k, sign);
+                    a.jmin = nmin(a.jmin, jac);
+                    a.jmax = nmax(a.jmax, jac);
+                    a.smin = nmin(a.smin, s);
+                    a.skew_max = nmax(a.skew_max, sk);
+                    a.skew_sum += sk;
+                    a.aspect = nmax(a.aspect, ar);
+                    if jac > 0.0 {
+                        a.smin_regular = nmin(a.smin_regular, s);
+                    } else if flat_edge_cell(g, i, j, k, sign) {
+                        a.flat += 1;
+                        if a.first_flat.len() < MAX_FIRST_FOLDED {
+                            a.first_flat.push([i, j, k]);
+                        }
+                    } else {
+                        a.smin_regular = nmin(a.smin_regular, s);
+                        a.folded += 1;
+                        if a.first.len() < MAX_FIRST_FOLDED {
+                            a.first.push([i, j, k]);
+                        }
+                    }
+                }
+            }
+            a
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .fold(Acc::new(), Acc::merge);
+    let (gi, gj, gk) = (lines(g, 0), lines(g, 1), lines(g, 2));
+    rep.jacobian_min = acc.jmin;
+    rep.jacobian_max = acc.jmax;
+    rep.scaled_jacobian_min = acc.smin;
+    rep.folded_cells = acc.folded;
+    rep.first_folded = acc.first;
+    rep.flat_edge_cells = acc.flat;
+    rep.first_flat_edge = acc.first_flat;
+    rep.scaled_jacobian_min_regular = acc.smin_regular;
+    rep.skewness_max = acc.skew_max;
+    rep.skewness_mean = acc.skew_sum / cells as f64;
+    rep.aspect_ratio_max = acc.aspect;
+    rep.growth_i_max = gi.0;
+    rep.growth_j_max = gj.0;
+    rep.growth_k_max = gk.0;
+    rep.min_spacing = nmin(gi.1, nmin(gj.1, gk.1));
+    rep.max_spacing = nmax(gi.2, nmax(gj.2, gk.2));
+    rep.faces = (0..6).map(|f| face_quality(g, f)).collect();
+    rep
+}
+
+/// Per-cell arrays for VTK cell data, cell (i, j, k) at i + (ni−1)(j + (nj−1) k):
+/// "jacobian_min", "scaled_jacobian_min", "skewness", "aspect_ratio".
+pub fn cell_fields3d(g: &Grid3) -> Vec<(&'static str, Vec<f64>)> {
+    let [ni, nj, nk] = g.dims();
+    let names = [
+        "jacobian_min",
+        "scaled_jacobian_min",
+        "skewness",
+        "aspect_ratio",
+    ];
+    if ni < 2 || nj < 2 || nk < 2 {
+        return names.into_iter().map(|n| (n, vec![])).collect();
+    }
+    let sign = orientation(g);
+    let (ci, cj) = (ni - 1, nj - 1);
+    let vals: Vec<[f64; 4]> = (0..ci * cj * (nk - 1))
+        .into_par_iter()
+        .map(|p| eval_cell(g, p % ci, (p / ci) % cj, p / (ci * cj), sign))
+        .collect();
+    names
+        .into_iter()
+        .enumerate()
+        .map(|(m, n)| (n, vals.iter().map(|v| v[m]).collect()))
+        .collect()
+}

@@ -1,0 +1,144 @@
+//! The linear solve of a Picard step behind one small trait, so that the direct reference
+//! solver and the black-box multigrid are interchangeable.
+
+pub mod direct;
+pub mod krylov;
+pub mod multigrid;
+pub mod multigrid3d;
+pub mod select;
+pub mod solver3d;
+pub mod stencil19;
+pub mod stencil9;
+
+use crate::solve::stencil19::Stencil19;
+use crate::solve::stencil9::Stencil9;
+
+/// Relative residual beyond which an iteration (cycles or Bi-CGSTAB) counts as diverged.
+pub const DIVERGED: f64 = 1e3;
+
+/// How accurately one linear system is to be solved.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveControl {
+    /// Stop when ‖b − A x‖₂ ≤ rel_tol · ‖b − A x₀‖₂ (iterative solvers).
+    pub rel_tol: f64,
+    /// At most this many iterations (cycles) (iterative solvers).
+    pub max_iter: usize,
+}
+
+impl Default for SolveControl {
+    fn default() -> Self {
+        SolveControl {
+            rel_tol: 1e-10,
+            max_iter: 100,
+        }
+    }
+}
+
+/// What a linear solve did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SolveInfo {
+    /// Iterations (cycles) done; 1 for a direct solve.
+    pub iterations: usize,
+    /// ‖r_k‖₂ / ‖r_0‖₂ after each iteration.
+    pub residual_history: Vec<f64>,
+    /// True if the requested reduction was reached.
+    pub converged: bool,
+}
+
+impl SolveInfo {
+    /// The start of an iteration at initial residual norm `r0`: [`SolveError::Diverged`] if
+    /// it is not finite, a converged empty result if it is zero, otherwise `None` (iterate).
+    pub(crate) fn start(r0: f64) -> Result<Option<SolveInfo>, SolveError> {
+        if !r0.is_finite() {
+            return Err(SolveError::Diverged(f64::NAN));
+        }
+        Ok((r0 == 0.0).then(|| SolveInfo {
+            converged: true,
+            ..SolveInfo::default()
+        }))
+    }
+}
+
+/// A stationary iteration from residual norm `r0` (plain multigrid cycles, 2D and 3D):
+/// `step()` does one iteration and returns the new residual norm. Stops at
+/// `‖r‖ ≤ rel_tol ‖r₀‖` or after `max_iter` steps (`converged: false`); a relative residual
+/// above [`DIVERGED`] or NaN is [`SolveError::Diverged`].
+pub(crate) fn stationary(
+    r0: f64,
+    ctl: &SolveControl,
+    mut step: impl FnMut() -> f64,
+) -> Result<SolveInfo, SolveError> {
+    if let Some(done) = SolveInfo::start(r0)? {
+        return Ok(done);
+    }
+    let mut info = SolveInfo::default();
+    while info.iterations < ctl.max_iter {
+        let rel = step() / r0;
+        info.iterations += 1;
+        info.residual_history.push(rel);
+        if rel.is_nan() || rel > DIVERGED {
+            return Err(SolveError::Diverged(rel));
+        }
+        if rel <= ctl.rel_tol {
+            info.converged = true;
+            break;
+        }
+    }
+    Ok(info)
+}
+
+/// Why a linear solve failed.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum SolveError {
+    #[error("linear solver: the matrix is singular or could not be factored ({0})")]
+    Singular(String),
+    #[error("linear solver: the iteration diverged (relative residual {0:.3e})")]
+    Diverged(f64),
+    #[error("linear solver: solve called before setup")]
+    NotSetUp,
+}
+
+/// A solver for nine-point structured systems `A x = b`.
+///
+/// `setup` is called once per operator (once per Picard step); several right-hand sides (the
+/// coordinates) then share it and may be solved in parallel through `solve(&self, ..)`.
+pub trait LinearSolver: Send + Sync {
+    /// Prepares the solver for operator `a` (factorization, multigrid hierarchy).
+    fn setup(&mut self, a: &Stencil9) -> Result<(), SolveError>;
+
+    /// Solves `A x = b` for the operator of the last `setup`; `x` holds the initial guess.
+    fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError>;
+
+    /// Prepares the solver for `a`, a small change of the operator of the last `setup` (a
+    /// later step of a converging Picard iteration). Iterative solvers may keep parts of the
+    /// last setup (multigrid: its coarse levels) as long as `solve` still solves `A x = b`
+    /// for this `a`. Default: a full `setup`.
+    fn update(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+        self.setup(a)
+    }
+
+    /// A short name for reports ("direct-lu", "multigrid").
+    fn name(&self) -> &'static str;
+}
+
+/// A solver for 19-point structured systems `A x = b`.
+///
+/// `setup` is called once per operator; the coordinates then share it and may be solved in
+/// parallel through `solve(&self, ..)`.
+pub trait LinearSolver3: Send + Sync {
+    /// Prepares the solver for operator `a` (factorization, preconditioner, hierarchy).
+    fn setup(&mut self, a: &Stencil19) -> Result<(), SolveError>;
+
+    /// Solves `A x = b` for the operator of the last `setup`; `x` holds the initial guess.
+    fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError>;
+
+    /// Prepares the solver for `a`, a small change of the operator of the last `setup` (a
+    /// later step of a converging Picard iteration); see
+    /// [`LinearSolver::update`]. Default: a full `setup`.
+    fn update(&mut self, a: &Stencil19) -> Result<(), SolveError> {
+        self.setup(a)
+    }
+
+    /// A short name for reports ("bicgstab-ilu0", "direct-lu").
+    fn name(&self) -> &'static str;
+}

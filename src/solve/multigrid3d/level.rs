@@ -1,0 +1,385 @@
+//! One level of the hierarchy: the 27-point operator, padded vector layout, residual and the
+//! alternating line Gauss–Seidel smoother.
+//!
+//! Vectors `x` and `r` of a level are *padded*: one ghost layer of zeros around the
+//! `nx × ny × nz` unknowns, so that no kernel of a cycle needs boundary tests (operator
+//! couplings that leave the grid are zero and read a zero ghost). Right-hand sides `b` are
+//! unpadded.
+//!
+//! # Line Gauss–Seidel
+//! A sweep along direction `d` solves, for every line of unknowns along `d`, the tridiagonal
+//! system of its three in-line couplings with all other neighbours frozen (Thomas algorithm,
+//! factored at setup). The 27-point stencil couples a line to its 8 neighbouring lines, so
+//! lines are coloured by the parities of their two other indices (4 colours); the lines of
+//! one colour are independent and run in parallel.
+
+use crate::solve::multigrid3d::{use_par, SharedPtr};
+use crate::solve::stencil19::{Stencil19, OFFSETS};
+use crate::solve::SolveError;
+use rayon::prelude::*;
+
+/// Index of offset (di, dj, dk) ∈ {−1, 0, 1}³ in a 27-point stencil.
+#[inline]
+pub(super) const fn s27(di: isize, dj: isize, dk: isize) -> usize {
+    ((di + 1) + 3 * (dj + 1) + 9 * (dk + 1)) as usize
+}
+
+/// Centre slot of a 27-point stencil; the opposite of slot `m` is `26 − m`.
+pub(super) const CTR: usize = 13;
+
+/// Offset of slot `m`.
+#[inline]
+pub(super) const fn off27(m: usize) -> [isize; 3] {
+    [
+        (m % 3) as isize - 1,
+        ((m / 3) % 3) as isize - 1,
+        (m / 9) as isize - 1,
+    ]
+}
+
+/// The 27-point and 19-point rows of one k-plane and the rows they are copied from.
+type PlaneRows<'a> = ((&'a mut [[f64; 27]], &'a mut [[f64; 19]]), &'a [[f64; 19]]);
+
+/// One level: operator, line factors and (if not the coarsest) the transfer stars to the next.
+#[derive(Debug)]
+pub(super) struct Level {
+    pub dims: [usize; 3],
+    /// Rows of the 27-point operator (unpadded numbering, i fastest).
+    pub a: Vec<[f64; 27]>,
+    /// The fine level's operator as given, 19-point rows (couplings leaving the grid zeroed;
+    /// empty on coarse levels): the residuals and plane sweeps of a cycle read these, 152
+    /// instead of 216 bytes and 19 instead of 27 products per unknown ([`Level::times_row`]).
+    pub a19: Vec<[f64; 19]>,
+    /// Thomas factors `[c'_t, 1/(b_t − a_t c'_{t−1})]` of the lines along x, y, z (line
+    /// smoother only; allocated by `factor_lines`).
+    pub fac: [Vec<[f64; 2]>; 3],
+    /// Prolongation stars (one per coarse unknown): weight of the coarse value at each of
+    /// its 27 fine neighbours.
+    pub p: Vec<[f64; 27]>,
+    /// Restriction stars: weight of each of the 27 fine neighbours' residuals.
+    pub r: Vec<[f64; 27]>,
+}
+
+impl Level {
+    pub fn new(dims: [usize; 3]) -> Self {
+        let n = dims.iter().product();
+        Level {
+            dims,
+            a: vec![[0.0; 27]; n],
+            a19: Vec::new(),
+            fac: std::array::from_fn(|_| Vec::new()),
+            p: Vec::new(),
+            r: Vec::new(),
+        }
+    }
+
+    pub fn n(&self) -> usize {
+        self.a.len()
+    }
+
+    /// Length of a padded vector.
+    pub fn padded_len(&self) -> usize {
+        let [nx, ny, nz] = self.dims;
+        (nx + 2) * (ny + 2) * (nz + 2)
+    }
+
+    /// Padded strides along x, y, z.
+    #[inline]
+    pub fn qstride(&self) -> [usize; 3] {
+        let [nx, ny, _] = self.dims;
+        [1, nx + 2, (nx + 2) * (ny + 2)]
+    }
+
+    /// Padded index of unknown (i, j, k).
+    #[inline]
+    pub fn q(&self, i: usize, j: usize, k: usize) -> usize {
+        let s = self.qstride();
+        (i + 1) + s[1] * (j + 1) + s[2] * (k + 1)
+    }
+
+    /// Padded linear offsets of the 27 slots.
+    pub fn qoff(&self) -> [isize; 27] {
+        std::array::from_fn(|m| self.qshift(off27(m)))
+    }
+
+    /// Padded linear offset of the neighbour at `o`.
+    #[inline]
+    fn qshift(&self, o: [isize; 3]) -> isize {
+        let s = self.qstride();
+        o[0] + s[1] as isize * o[1] + s[2] as isize * o[2]
+    }
+
+    /// Padded linear offsets of the 19 slots of [`Stencil19`].
+    pub fn qoff19(&self) -> [isize; 19] {
+        std::array::from_fn(|m| self.qshift(OFFSETS[m].map(isize::from)))
+    }
+
+    /// Row `p` of the operator times padded `x` around padded index `q`: from the 19-point
+    /// rows on the fine level, the 27-point rows elsewhere (`qo`, `qo19`: [`Level::qoff`],
+    /// [`Level::qoff19`]).
+    ///
+    /// # Safety
+    /// `x` is a padded vector of this level and `q` the padded index of an unknown (all its
+    /// neighbours, ghosts included, are then inside `x`).
+    #[inline(always)]
+    pub unsafe fn times_row(
+        &self,
+        p: usize,
+        x: &[f64],
+        q: usize,
+        qo: &[isize; 27],
+        qo19: &[isize; 19],
+    ) -> f64 {
+        debug_assert!(x.len() == self.padded_len() && q < x.len());
+        let xq = x.as_ptr().add(q);
+        let mut s = 0.0;
+        if self.a19.is_empty() {
+            let row = &self.a[p];
+            for m in 0..27 {
+                s += row[m] * *xq.offset(qo[m]);
+            }
+        } else {
+            let row = &self.a19[p];
+            for m in 0..19 {
+                s += row[m] * *xq.offset(qo19[m]);
+            }
+        }
+        s
+    }
+
+    /// Copies the 19-point operator into the 27-point rows and the 19-point rows of the fine
+    /// level (couplings leaving the grid dropped).
+    pub fn embed(&mut self, a: &Stencil19) -> Result<(), SolveError> {
+        let [nx, ny, _] = self.dims;
+        let slots: [usize; 19] = std::array::from_fn(|m| {
+            s27(
+                OFFSETS[m][0] as isize,
+                OFFSETS[m][1] as isize,
+                OFFSETS[m][2] as isize,
+            )
+        });
+        let plane = nx * ny;
+        self.a19.resize(self.a.len(), [0.0; 19]);
+        let fill = |(k, ((rows, rows19), src)): (usize, PlaneRows)| {
+            let mut bad = None;
+            for (q, ((row, row19), src)) in rows.iter_mut().zip(rows19).zip(src).enumerate() {
+                let ins = a.inside(q % nx, q / nx, k);
+                *row = [0.0; 27];
+                for m in 0..19 {
+                    row19[m] = if ins[m] { src[m] } else { 0.0 };
+                    row[slots[m]] = row19[m];
+                }
+                if bad.is_none() && !row.iter().all(|v| v.is_finite()) {
+                    bad = Some(k * plane + q);
+                }
+            }
+            bad
+        };
+        let bad = if use_par(self.a.len()) {
+            self.a
+                .par_chunks_mut(plane)
+                .zip(self.a19.par_chunks_mut(plane))
+                .zip(a.coefs().par_chunks(plane))
+                .enumerate()
+                .filter_map(fill)
+                .min()
+        } else {
+            self.a
+                .chunks_mut(plane)
+                .zip(self.a19.chunks_mut(plane))
+                .zip(a.coefs().chunks(plane))
+                .enumerate()
+                .filter_map(fill)
+                .min()
+        };
+        match bad {
+            Some(p) => Err(SolveError::Singular(format!(
+                "multigrid: non-finite coefficient in row {p}"
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// Factors the tridiagonal line systems of all three directions.
+    pub fn factor_lines(&mut self) -> Result<(), SolveError> {
+        let [nx, ny, nz] = self.dims;
+        let dims = self.dims;
+        let a = &self.a;
+        for (d, fac) in self.fac.iter_mut().enumerate() {
+            fac.resize(a.len(), [0.0; 2]);
+            let (sub, sup) = line_slots(d);
+            let stride = [1, nx, nx * ny][d];
+            let len = dims[d];
+            let line_starts: Vec<usize> = (0..nx * ny * nz)
+                .filter(|&p| [p % nx, (p / nx) % ny, p / (nx * ny)][d] == 0)
+                .collect();
+            let fp = SharedFac(fac.as_mut_ptr());
+            let one = |&p0: &usize| -> Result<(), SolveError> {
+                let mut cp = 0.0;
+                for t in 0..len {
+                    let p = p0 + t * stride;
+                    let row = &a[p];
+                    let lo = if t > 0 { row[sub] } else { 0.0 };
+                    let den = row[CTR] - lo * cp;
+                    if !(den.is_finite() && den.abs() > 1e-300)
+                        || den.abs() <= 1e-14 * row[CTR].abs()
+                    {
+                        return Err(SolveError::Singular(format!(
+                            "multigrid: singular line system at unknown {p}"
+                        )));
+                    }
+                    let inv = 1.0 / den;
+                    cp = if t + 1 < len { row[sup] * inv } else { 0.0 };
+                    // SAFETY: every unknown lies on exactly one line of direction d.
+                    unsafe { *fp.get().add(p) = [cp, inv] };
+                }
+                Ok(())
+            };
+            if use_par(a.len()) {
+                line_starts.par_iter().try_for_each(one)?;
+            } else {
+                line_starts.iter().try_for_each(one)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `r = b − A x` on padded `x`, `r` (ghosts of `r` stay zero); returns ‖r‖₂².
+    pub fn residual(&self, x: &[f64], b: &[f64], r: &mut [f64]) -> f64 {
+        self.rows_into(x, Some(b), r, true)
+    }
+
+    /// `y = A x` for padded `x` and unpadded `y`.
+    pub fn apply(&self, x: &[f64], y: &mut [f64]) {
+        self.rows_into(x, None, y, false);
+    }
+
+    /// `out = b − A x` (or `A x` without `b`), padded or unpadded `out`; returns ‖out‖₂².
+    fn rows_into(&self, x: &[f64], b: Option<&[f64]>, out: &mut [f64], padded: bool) -> f64 {
+        let [nx, ny, nz] = self.dims;
+        assert_eq!(x.len(), self.padded_len());
+        let (qo, qo19) = (self.qoff(), self.qoff19());
+        let qs = self.qstride();
+        let plane = |k: usize, rp: &mut [f64]| -> f64 {
+            let mut ss = 0.0;
+            for j in 0..ny {
+                for i in 0..nx {
+                    let p = i + nx * (j + ny * k);
+                    let q = (i + 1) + qs[1] * (j + 1);
+                    let qa = q + qs[2] * (k + 1);
+                    // SAFETY: x is padded (asserted) and qa the padded index of (i, j, k)
+                    let mut s = unsafe { self.times_row(p, x, qa, &qo, &qo19) };
+                    if let Some(b) = b {
+                        s = b[p] - s;
+                    }
+                    rp[if padded { q } else { i + nx * j }] = s;
+                    ss += s * s;
+                }
+            }
+            ss
+        };
+        let (body, chunk) = if padded {
+            (&mut out[qs[2]..qs[2] * (nz + 1)], qs[2])
+        } else {
+            (&mut out[..], nx * ny)
+        };
+        if use_par(self.n()) {
+            body.par_chunks_mut(chunk)
+                .enumerate()
+                .map(|(k, rp)| plane(k, rp))
+                .sum()
+        } else {
+            body.chunks_mut(chunk)
+                .enumerate()
+                .map(|(k, rp)| plane(k, rp))
+                .sum()
+        }
+    }
+
+    /// One line Gauss–Seidel sweep along direction `d` (all four colours) on padded `x`.
+    pub fn line_sweep(&self, d: usize, x: &mut [f64], b: &[f64]) {
+        let dims = self.dims;
+        let [nx, ny, _] = dims;
+        let (e1, e2) = [(1, 2), (0, 2), (0, 1)][d];
+        let (sub, sup) = line_slots(d);
+        let mut others = [0usize; 24];
+        for (o, m) in others
+            .iter_mut()
+            .zip((0..27).filter(|&m| m != sub && m != sup && m != CTR))
+        {
+            *o = m;
+        }
+        let qo = self.qoff();
+        let qsd = self.qstride()[d];
+        let ps = [1, nx, nx * ny];
+        let len = dims[d];
+        let fac = &self.fac[d];
+        let xp = SharedPtr(x.as_mut_ptr());
+        // Colours: the lines without coarse points first, the coarse lines last.
+        for (c1, c2) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            let line = |u: usize, v: usize| {
+                let mut idx = [0usize; 3];
+                idx[e1] = u;
+                idx[e2] = v;
+                let p0 = idx[0] + nx * (idx[1] + ny * idx[2]);
+                let q0 = self.q(idx[0], idx[1], idx[2]);
+                let x = xp.get();
+                // SAFETY: lines of one colour do not couple (they differ by ≥ 2 in an
+                // index), so each task writes its own line and reads only other colours.
+                unsafe {
+                    let mut prev = 0.0;
+                    for t in 0..len {
+                        let (p, q) = (p0 + t * ps[d], q0 + t * qsd);
+                        let row = &self.a[p];
+                        let mut s = b[p];
+                        for &m in &others {
+                            s -= row[m] * *x.offset(q as isize + qo[m]);
+                        }
+                        s -= row[sub] * prev;
+                        prev = s * fac[p][1];
+                        *x.add(q) = prev;
+                    }
+                    let mut next = 0.0;
+                    for t in (0..len).rev() {
+                        let (p, q) = (p0 + t * ps[d], q0 + t * qsd);
+                        next = *x.add(q) - fac[p][0] * next;
+                        *x.add(q) = next;
+                    }
+                }
+            };
+            let outer = |v: usize| {
+                for u in (c1..dims[e1]).step_by(2) {
+                    line(u, v);
+                }
+            };
+            if use_par(self.n()) {
+                (c2..dims[e2]).into_par_iter().step_by(2).for_each(outer);
+            } else {
+                (c2..dims[e2]).step_by(2).for_each(outer);
+            }
+        }
+    }
+}
+
+/// Sub- and super-diagonal slots of the lines along direction `d`.
+#[inline]
+pub(super) fn line_slots(d: usize) -> (usize, usize) {
+    match d {
+        0 => (s27(-1, 0, 0), s27(1, 0, 0)),
+        1 => (s27(0, -1, 0), s27(0, 1, 0)),
+        _ => (s27(0, 0, -1), s27(0, 0, 1)),
+    }
+}
+
+#[derive(Clone, Copy)]
+struct SharedFac(*mut [f64; 2]);
+// SAFETY: used only for disjoint writes (one line per task).
+unsafe impl Send for SharedFac {}
+unsafe impl Sync for SharedFac {}
+
+impl SharedFac {
+    #[inline]
+    fn get(self) -> *mut [f64; 2] {
+        self.0
+    }
+}

@@ -1,0 +1,6 @@
+//! Parametrized surfaces (paper Section 4): the pipeline (boundary (u, v) from arclength,
+//! Laplace–Beltrami on the initial grid [50–53], straight-line target grid) in [`pipeline`],
+//! and the point location + bilinear inversion of its last step in [`inversion`]. Minimal
+//! surfaces (Section 3) are 2D blocks in R³: [`crate::elliptic::domain`].
+pub mod inversion;
+pub mod pipeline;
