@@ -115,13 +115,108 @@ pub type BlockResult<const D: usize> = Solved<crate::grid::Grid2<D>>;
 pub type VolumeResult = Solved<crate::grid::Grid3>;
 
 /// What the system's part of one Picard step returns to [`iterate`].
-pub(crate) struct StepWork {
+struct StepWork {
     /// Residual of the grid equations at the iterate the step started from.
     pub residual: f64,
     /// The linear solves of the step, one per coordinate.
     pub solves: Vec<std::result::Result<SolveInfo, SolveError>>,
     /// Largest correction relative to the diameter (NaN if the grid became non-finite).
     pub update: f64,
+}
+
+/// One grid system's part of a Picard step: the 2D system [24]
+/// ([`crate::elliptic::poisson2d`]) or the volume system [86] ([`crate::elliptic::poisson3d`]),
+/// each holding its iterate, operator, right-hand sides and linear solver.
+pub(crate) trait System {
+    /// Assembles the operator at the current iterate and the residuals b − A x (interior
+    /// numbering); returns the residual of the grid equations relative to the diameter.
+    fn evaluate(&mut self) -> f64;
+    /// Sets the linear solver up for the operator, or only updates it if `small` (the last
+    /// update was below [`SMALL_CHANGE`]).
+    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError>;
+    /// Solves the corrections to `ctl` and adds them to the iterate: the solves, and the
+    /// largest correction relative to the diameter (NaN if the grid became non-finite).
+    fn correct(
+        &mut self,
+        ctl: &SolveControl,
+    ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64);
+    /// The linear solver's name for the report.
+    fn solver_name(&self) -> &'static str;
+}
+
+/// The checks of a Picard solve's input shared by 2D and 3D: the grid has at least three
+/// nodes each way (`small` is the message if not), the control functions are of its size and
+/// finite.
+pub(crate) fn check_input(
+    place: &str,
+    large_enough: bool,
+    small: &str,
+    same_size: bool,
+    finite: bool,
+) -> Result<()> {
+    if !large_enough {
+        return Err(Error::input(place, small));
+    }
+    if !same_size {
+        return Err(Error::input(
+            place,
+            "control functions and grid differ in size",
+        ));
+    }
+    if !finite {
+        return Err(Error::input(
+            place,
+            "the algebraic transformation is degenerate (non-finite control functions)",
+        ));
+    }
+    Ok(())
+}
+
+/// Runs the Picard iteration of `sys` ([`iterate`]) and evaluates the final residual. Returns
+/// the report and the shortest time (seconds) of one evaluation (assembly + residual): the
+/// work unit of nested iteration.
+pub(crate) fn run(
+    sys: &mut dyn System,
+    params: &PicardParams,
+    relative_stop: f64,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<(PicardInfo, f64)> {
+    let mut eval_secs = f64::INFINITY;
+    let mut evaluate = |sys: &mut dyn System| {
+        let t0 = std::time::Instant::now();
+        let res = sys.evaluate();
+        eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
+        res
+    };
+    let (history, converged) = iterate(
+        params,
+        relative_stop,
+        place,
+        |small, ctl| {
+            let residual = evaluate(&mut *sys);
+            sys.prepare(small).map_err(|source| Error::Solve {
+                place: place.to_string(),
+                source,
+            })?;
+            let (solves, update) = sys.correct(ctl);
+            Ok(StepWork {
+                residual,
+                solves,
+                update,
+            })
+        },
+        progress,
+    )?;
+    let final_residual = evaluate(&mut *sys);
+    let info = info(
+        sys.solver_name(),
+        params,
+        history,
+        converged,
+        final_residual,
+    );
+    Ok((info, eval_secs))
 }
 
 /// Runs Picard steps until the error estimate falls below the tolerance (or below
@@ -131,7 +226,7 @@ pub(crate) struct StepWork {
 /// last update was below [`SMALL_CHANGE`]), solve the corrections to `ctl` and apply them.
 /// `progress` sees every step. Returns the history and whether the iteration converged; a
 /// failed linear solve or a non-finite update is an error naming `place`.
-pub(crate) fn iterate(
+fn iterate(
     params: &PicardParams,
     relative_stop: f64,
     place: &str,
@@ -167,7 +262,7 @@ pub(crate) fn iterate(
 
 /// The report of an iteration by [`iterate`] with the linear solver `solver`, ending at
 /// residual `final_residual` (work units and coarse levels are filled in by nested iteration).
-pub(crate) fn info(
+fn info(
     solver: &str,
     params: &PicardParams,
     history: Vec<PicardStep>,

@@ -17,8 +17,8 @@ use crate::elliptic::picard::{self, PicardInfo, PicardParams};
 use crate::grid::boundary::Boundary2;
 use crate::grid::Grid2;
 use crate::solve::stencil9::Stencil9;
-use crate::solve::LinearSolver;
-use crate::{Error, Result};
+use crate::solve::{LinearSolver, SolveControl, SolveError, SolveInfo};
+use crate::Result;
 use rayon::prelude::*;
 
 /// Assembles the frozen nine-point operator of [43, 44] at iterate `x` and the right-hand
@@ -209,70 +209,77 @@ pub(crate) fn solve_timed<const D: usize>(
     place: &str,
 ) -> Result<(PicardInfo, f64)> {
     let (ni, nj) = (x.ni(), x.nj());
-    if ni < 3 || nj < 3 {
-        return Err(Error::input(place, "a block needs at least 3 × 3 nodes"));
-    }
-    if (ctrl.ni(), ctrl.nj()) != (ni, nj) {
-        return Err(Error::input(
-            place,
-            "control functions and grid differ in size",
-        ));
-    }
-    if !ctrl.all_finite() {
-        return Err(Error::input(
-            place,
-            "the algebraic transformation is degenerate (non-finite control functions)",
-        ));
-    }
-    let solve_err = |source| Error::Solve {
-        place: place.to_string(),
-        source,
-    };
+    picard::check_input(
+        place,
+        ni >= 3 && nj >= 3,
+        "a block needs at least 3 × 3 nodes",
+        (ctrl.ni(), ctrl.nj()) == (ni, nj),
+        ctrl.all_finite(),
+    )?;
     let (nx, ny) = (ni - 2, nj - 2);
     let diam = x.diameter();
-    let mut a = Stencil9::zeros(nx, ny);
-    let mut rhs: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
-    // residuals, then corrections, of the coordinates (interior numbering)
-    let mut r: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
-    let mut u: [Vec<f64>; D] = std::array::from_fn(|_| vec![0.0; nx * ny]);
-    let mut eval_secs = f64::INFINITY;
-    let mut evaluate =
-        |x: &Grid2<D>, a: &mut Stencil9, rhs: &mut [Vec<f64>; D], r: &mut [Vec<f64>; D]| {
-            let t0 = std::time::Instant::now();
-            assemble(x, ctrl, a, rhs);
-            let res = residual_scaled(x, a, rhs, diam, Some(r));
-            eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
-            res
+    let mut sys = System2 {
+        x,
+        ctrl,
+        solver,
+        a: Stencil9::zeros(nx, ny),
+        rhs: std::array::from_fn(|_| vec![0.0; nx * ny]),
+        r: std::array::from_fn(|_| vec![0.0; nx * ny]),
+        u: std::array::from_fn(|_| vec![0.0; nx * ny]),
+        diam,
+    };
+    picard::run(&mut sys, params, relative_stop, place, &mut |_, _| {})
+}
+
+/// The Picard system of one 2D block: iterate, frozen operator, right-hand sides, and the
+/// residuals and corrections of the coordinates (interior numbering).
+struct System2<'a, const D: usize> {
+    x: &'a mut Grid2<D>,
+    ctrl: &'a Control2,
+    solver: &'a mut dyn LinearSolver,
+    a: Stencil9,
+    rhs: [Vec<f64>; D],
+    r: [Vec<f64>; D],
+    u: [Vec<f64>; D],
+    diam: f64,
+}
+
+impl<const D: usize> picard::System for System2<'_, D> {
+    fn evaluate(&mut self) -> f64 {
+        assemble(self.x, self.ctrl, &mut self.a, &mut self.rhs);
+        residual_scaled(self.x, &self.a, &self.rhs, self.diam, Some(&mut self.r))
+    }
+
+    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
+        if small {
+            self.solver.update(&self.a)
+        } else {
+            self.solver.setup(&self.a)
+        }
+    }
+
+    fn correct(
+        &mut self,
+        ctl: &SolveControl,
+    ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
+        let solver: &dyn LinearSolver = self.solver;
+        let (infos, upd) =
+            picard::solve_corrections(&mut self.u, &self.r, |rc, uc| solver.solve(rc, uc, ctl));
+        let (ni, nx) = (self.x.ni(), self.x.ni() - 2);
+        for (c, uc) in self.u.iter().enumerate() {
+            add_interior(uc, ni, nx, self.x.coord_mut(c));
+        }
+        let update = if self.x.all_finite() {
+            upd / self.diam
+        } else {
+            f64::NAN
         };
-    let (history, converged) = picard::iterate(
-        params,
-        relative_stop,
-        place,
-        |small, ctl| {
-            let res = evaluate(x, &mut a, &mut rhs, &mut r);
-            if small {
-                solver.update(&a)
-            } else {
-                solver.setup(&a)
-            }
-            .map_err(solve_err)?;
-            let solver_ref: &dyn LinearSolver = solver;
-            let (infos, upd) =
-                picard::solve_corrections(&mut u, &r, |rc, uc| solver_ref.solve(rc, uc, ctl));
-            for (c, uc) in u.iter().enumerate() {
-                add_interior(uc, ni, nx, x.coord_mut(c));
-            }
-            Ok(picard::StepWork {
-                residual: res,
-                solves: infos,
-                update: if x.all_finite() { upd / diam } else { f64::NAN },
-            })
-        },
-        &mut |_, _| {},
-    )?;
-    let final_residual = evaluate(x, &mut a, &mut rhs, &mut r);
-    let info = picard::info(solver.name(), params, history, converged, final_residual);
-    Ok((info, eval_secs))
+        (infos, update)
+    }
+
+    fn solver_name(&self) -> &'static str {
+        self.solver.name()
+    }
 }
 
 /// Convenience: the start grid with the boundary of `b` and the solve of [24] from it.

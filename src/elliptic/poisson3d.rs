@@ -22,8 +22,8 @@ use crate::algebraic::control3d::Control3;
 use crate::elliptic::picard;
 use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep};
 use crate::solve::stencil19::{Stencil19, C, OFFSETS};
-use crate::solve::LinearSolver3;
-use crate::{Error, Grid3, Result};
+use crate::solve::{LinearSolver3, SolveControl, SolveError, SolveInfo};
+use crate::{Grid3, Result};
 use rayon::prelude::*;
 
 /// The six α^ij of [88] in the order 11, 12, 13, 22, 23, 33, from g_ij.
@@ -228,77 +228,81 @@ pub(crate) fn solve_timed(
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<(PicardInfo, f64)> {
     let dims = x.dims();
-    if dims.iter().any(|&n| n < 3) {
-        return Err(Error::input(
-            place,
-            "a volume block needs at least 3 × 3 × 3 nodes",
-        ));
-    }
-    if ctrl.dims() != dims {
-        return Err(Error::input(
-            place,
-            "control functions and grid differ in size",
-        ));
-    }
-    if !ctrl.all_finite() {
-        return Err(Error::input(
-            place,
-            "the algebraic transformation is degenerate (non-finite control functions)",
-        ));
-    }
-    let diam = diameter(x);
-    let mut a = Stencil19::zeros(dims[0] - 2, dims[1] - 2, dims[2] - 2);
-    let n = a.len();
-    let mut rhs: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n]);
-    // residuals b − A x_k, then corrections δ, of the coordinates (interior numbering)
-    let mut r: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n]);
-    let mut u: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n]);
-    let mut scratch = vec![0.0; n];
-    let solve_err = |source| Error::Solve {
-        place: place.to_string(),
-        source,
-    };
-    let mut eval_secs = f64::INFINITY;
-    let mut evaluate = |x: &Grid3,
-                        a: &mut Stencil19,
-                        rhs: &mut [Vec<f64>; 3],
-                        r: &mut [Vec<f64>; 3],
-                        scratch: &mut [f64]| {
-        let t0 = std::time::Instant::now();
-        assemble(x, ctrl, a, rhs);
-        let res = residual_into(x, a, rhs, diam, r, scratch);
-        eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
-        res
-    };
-    let (history, converged) = picard::iterate(
-        params,
-        relative_stop,
+    picard::check_input(
         place,
-        |small, ctl| {
-            let res = evaluate(x, &mut a, &mut rhs, &mut r, &mut scratch);
-            if small {
-                solver.update(&a)
-            } else {
-                solver.setup(&a)
-            }
-            .map_err(solve_err)?;
-            let sref: &dyn LinearSolver3 = solver;
-            let (infos, upd) =
-                picard::solve_corrections(&mut u, &r, |rc, uc| sref.solve(rc, uc, ctl));
-            for (c, uc) in u.iter().enumerate() {
-                add_interior(x, c, uc);
-            }
-            Ok(picard::StepWork {
-                residual: res,
-                solves: infos,
-                update: upd / diam,
-            })
-        },
-        progress,
+        dims.iter().all(|&n| n >= 3),
+        "a volume block needs at least 3 × 3 × 3 nodes",
+        ctrl.dims() == dims,
+        ctrl.all_finite(),
     )?;
-    let final_residual = evaluate(x, &mut a, &mut rhs, &mut r, &mut scratch);
-    let info = picard::info(solver.name(), params, history, converged, final_residual);
-    Ok((info, eval_secs))
+    let diam = diameter(x);
+    let a = Stencil19::zeros(dims[0] - 2, dims[1] - 2, dims[2] - 2);
+    let n = a.len();
+    let mut sys = System3 {
+        x,
+        ctrl,
+        solver,
+        a,
+        rhs: std::array::from_fn(|_| vec![0.0; n]),
+        r: std::array::from_fn(|_| vec![0.0; n]),
+        u: std::array::from_fn(|_| vec![0.0; n]),
+        scratch: vec![0.0; n],
+        diam,
+    };
+    picard::run(&mut sys, params, relative_stop, place, progress)
+}
+
+/// The Picard system of one volume block: iterate, frozen operator, right-hand sides, and the
+/// residuals b − A x_k and corrections δ of the coordinates (interior numbering).
+struct System3<'a> {
+    x: &'a mut Grid3,
+    ctrl: &'a Control3,
+    solver: &'a mut dyn LinearSolver3,
+    a: Stencil19,
+    rhs: [Vec<f64>; 3],
+    r: [Vec<f64>; 3],
+    u: [Vec<f64>; 3],
+    scratch: Vec<f64>,
+    diam: f64,
+}
+
+impl picard::System for System3<'_> {
+    fn evaluate(&mut self) -> f64 {
+        assemble(self.x, self.ctrl, &mut self.a, &mut self.rhs);
+        residual_into(
+            self.x,
+            &self.a,
+            &self.rhs,
+            self.diam,
+            &mut self.r,
+            &mut self.scratch,
+        )
+    }
+
+    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
+        if small {
+            self.solver.update(&self.a)
+        } else {
+            self.solver.setup(&self.a)
+        }
+    }
+
+    fn correct(
+        &mut self,
+        ctl: &SolveControl,
+    ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
+        let solver: &dyn LinearSolver3 = self.solver;
+        let (infos, upd) =
+            picard::solve_corrections(&mut self.u, &self.r, |rc, uc| solver.solve(rc, uc, ctl));
+        for (c, uc) in self.u.iter().enumerate() {
+            add_interior(self.x, c, uc);
+        }
+        (infos, upd / self.diam)
+    }
+
+    fn solver_name(&self) -> &'static str {
+        self.solver.name()
+    }
 }
 
 /// Bounding-box diagonal of a volume grid.
