@@ -1,30 +1,16 @@
 //! Control functions P11, P12, P22 of the Poisson system, eqs. [19, 20].
 
 use crate::algebraic::transform::{straight_line, ParamGrid};
-use crate::algebraic::ControlKind;
+use crate::algebraic::{ControlKind, Controls};
 use crate::grid::arclength::EdgeFunctions;
 use crate::grid::boundary::Boundary2;
 use rayon::prelude::*;
 
 /// The six control functions per node, fixed during the whole elliptic solve:
 /// `p[n] = [P¹11, P²11, P¹12, P²12, P¹22, P²22]` at node n (i fastest); zero on the boundary.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Control2 {
-    ni: usize,
-    nj: usize,
-    p: Vec<[f64; 6]>,
-}
+pub type Control2 = Controls<6, 2>;
 
 impl Control2 {
-    /// All control functions zero: the grid system reduces to a Laplace (Winslow) grid.
-    pub fn zeros(ni: usize, nj: usize) -> Self {
-        Control2 {
-            ni,
-            nj,
-            p: vec![[0.0; 6]; ni * nj],
-        }
-    }
-
     /// Control functions at interior nodes, eqs. [19, 20]:
     /// P_ij = −T⁻¹ (s_{ξiξj}, t_{ξiξj})ᵀ with T = ∂(s, t)/∂(ξ, η).
     ///
@@ -63,28 +49,17 @@ impl Control2 {
                 *out = [p11[0], p11[1], p12[0], p12[1], p22[0], p22[1]];
             }
         });
-        Control2 { ni, nj, p }
+        Controls { dims: [ni, nj], p }
     }
 
     /// Nodes along i.
     pub fn ni(&self) -> usize {
-        self.ni
+        self.dims[0]
     }
 
     /// Nodes along j.
     pub fn nj(&self) -> usize {
-        self.nj
-    }
-
-    /// The six control functions at node index n.
-    #[inline]
-    pub fn at(&self, n: usize) -> &[f64; 6] {
-        &self.p[n]
-    }
-
-    /// True if every value is finite (a degenerate algebraic map gives infinities).
-    pub fn all_finite(&self) -> bool {
-        self.p.iter().all(|q| q.iter().all(|v| v.is_finite()))
+        self.dims[1]
     }
 }
 
@@ -94,7 +69,7 @@ pub fn control_for<const D: usize>(b: &Boundary2<D>, kind: ControlKind) -> Contr
         ControlKind::Algebraic => {
             Control2::from_algebraic(&straight_line(&EdgeFunctions::arclength(b)))
         }
-        ControlKind::Laplace => Control2::zeros(b.ni(), b.nj()),
+        ControlKind::Laplace => Control2::zeros([b.ni(), b.nj()]),
     }
 }
 

@@ -1,7 +1,7 @@
 //! The 18 control functions of the volume grid system, eqs. [83, 84] (METHOD.md §6).
 
 use crate::algebraic::bilinear3d::{bilinear, det3, EdgeFunctions3, ParamGrid3};
-use crate::algebraic::ControlKind;
+use crate::algebraic::{ControlKind, Controls};
 use crate::grid::faces::Faces;
 use crate::Result;
 use rayon::prelude::*;
@@ -12,11 +12,7 @@ pub const PAIRS: [[usize; 2]; 6] = [[0, 0], [0, 1], [0, 2], [1, 1], [1, 2], [2, 
 /// The control functions per node, fixed during the whole elliptic solve:
 /// `p[n][3 m + c] = P^c_{ij}` with ij = `PAIRS[m]` and c = 0, 1, 2 (s, t, u component);
 /// zero on the boundary.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Control3 {
-    dims: [usize; 3],
-    p: Vec<[f64; 18]>,
-}
+pub type Control3 = Controls<18, 3>;
 
 /// Central differences of `f` at node n of a grid with strides (1, sj, sk), unit spacing:
 /// the first derivatives (ξ, η, ζ) and the six second derivatives in [`PAIRS`] order. The
@@ -36,14 +32,6 @@ pub fn central(f: &[f64], n: usize, st: [usize; 3]) -> ([f64; 3], [f64; 6]) {
 }
 
 impl Control3 {
-    /// All control functions zero: a Laplace (Winslow) volume grid, for comparison.
-    pub fn zeros(dims: [usize; 3]) -> Self {
-        Control3 {
-            dims,
-            p: vec![[0.0; 18]; dims.iter().product()],
-        }
-    }
-
     /// Control functions at interior nodes, eqs. [83, 84]: P_ij = −T⁻¹ (s_{ξiξj}, t_{ξiξj},
     /// u_{ξiξj})ᵀ with T = ∂(s, t, u)/∂(ξ, η, ζ), by central differences of the bilinear
     /// (s, t, u) grid in index space (the grid system is homogeneous in the spacings, so the
@@ -82,23 +70,7 @@ impl Control3 {
                 }
             }
         });
-        Control3 { dims, p }
-    }
-
-    /// Node counts (ni, nj, nk).
-    pub fn dims(&self) -> [usize; 3] {
-        self.dims
-    }
-
-    /// The 18 control functions at node index n.
-    #[inline]
-    pub fn at(&self, n: usize) -> &[f64; 18] {
-        &self.p[n]
-    }
-
-    /// True if every value is finite (a degenerate algebraic map gives infinities).
-    pub fn all_finite(&self) -> bool {
-        self.p.iter().all(|q| q.iter().all(|v| v.is_finite()))
+        Controls { dims, p }
     }
 }
 

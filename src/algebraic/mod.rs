@@ -25,3 +25,39 @@ pub enum ControlKind {
     /// All zero: a Laplace (Winslow) grid, which loses boundary clustering. For comparison.
     Laplace,
 }
+
+/// Control functions per node, fixed during the whole elliptic solve: `K` values at each node
+/// of a grid of `dims` nodes (i fastest), zero on the boundary. Its two uses are
+/// [`control2d::Control2`] (K = 6, eqs. [19, 20]) and [`control3d::Control3`] (K = 18, eqs.
+/// [83, 84]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Controls<const K: usize, const DIM: usize> {
+    dims: [usize; DIM],
+    p: Vec<[f64; K]>,
+}
+
+impl<const K: usize, const DIM: usize> Controls<K, DIM> {
+    /// All control functions zero: the grid system reduces to a Laplace (Winslow) grid.
+    pub fn zeros(dims: [usize; DIM]) -> Self {
+        Controls {
+            dims,
+            p: vec![[0.0; K]; dims.iter().product()],
+        }
+    }
+
+    /// Node counts (ni, nj[, nk]).
+    pub fn dims(&self) -> [usize; DIM] {
+        self.dims
+    }
+
+    /// The control functions at node index n.
+    #[inline]
+    pub fn at(&self, n: usize) -> &[f64; K] {
+        &self.p[n]
+    }
+
+    /// True if every value is finite (a degenerate algebraic map gives infinities).
+    pub fn all_finite(&self) -> bool {
+        self.p.iter().all(|q| q.iter().all(|v| v.is_finite()))
+    }
+}

@@ -135,7 +135,7 @@ pub fn grid_block_nested<const D: usize>(
         let ctrl = match &pg {
             Some(pg) if lev == 0 => Control2::from_algebraic(pg),
             Some(pg) => Control2::from_algebraic(&subsample_param(pg, stride)),
-            None => Control2::zeros(ni, nj),
+            None => Control2::zeros([ni, nj]),
         };
         let mut x = match &prev {
             None => t_lev.clone(),
