@@ -392,7 +392,7 @@ fn nested_iteration_gives_the_plain_picard_grid_and_reports_work_units() {
         assert_eq!(ni.levels.len(), coarse + 1, "{ni:?}");
         assert_eq!(nested.picard.coarse_steps.len(), coarse);
         assert!(ni.levels.iter().all(|l| l.converged), "{ni:?}");
-        assert_eq!(ni.levels[0].ni, (d[0] - 1) / (1 << coarse) + 1);
+        assert_eq!(ni.levels[0].dims[0], (d[0] - 1) / (1 << coarse) + 1);
         assert!(pi.levels.len() == 1 && plain.picard.coarse_steps.is_empty());
         for (r, i) in [(&plain, &pi), (&nested, &ni)] {
             let wu = r.picard.work_units.unwrap();

@@ -1,9 +1,13 @@
-//! Nested iteration for the grid system [24]: solve it on coarser grids first, so that the
-//! Picard iteration [43, 44] on the finest grid starts next to its solution.
+//! Nested iteration for the grid systems [24] (2D blocks) and [86]–[88] (volume blocks): solve
+//! them on coarser grids first, so that the Picard iteration [43, 44] on the finest grid starts
+//! next to its solution. One level loop (`run`) serves both dimensions; what differs (the grid
+//! type's sub-sampling and prolongation, a level's control functions and Picard solve) comes
+//! through the traits `LevelGrid` and `Problem`. The volume side is in
+//! [`crate::elliptic::nested3d`].
 //!
 //! # Levels
 //! Level ℓ keeps every 2^ℓ-th node of the block in each direction. A dimension of `n` nodes
-//! coarsens exactly when `n` is odd (`(n − 1) / 2 + 1` nodes); coarsening stops when either
+//! coarsens exactly when `n` is odd (`(n − 1) / 2 + 1` nodes); coarsening stops when any
 //! dimension is even or would drop below [`MIN_NODES`].
 //!
 //! # The coarse problems are restrictions of the fine one
@@ -37,8 +41,7 @@
 use crate::algebraic::control2d::Control2;
 use crate::algebraic::transform::{straight_line, transfinite, ParamGrid};
 use crate::algebraic::ControlKind;
-use crate::elliptic::picard::BlockResult;
-use crate::elliptic::picard::PicardParams;
+use crate::elliptic::picard::{PicardInfo, PicardParams, Solved};
 use crate::elliptic::poisson2d;
 use crate::grid::arclength::EdgeFunctions;
 use crate::grid::boundary::Boundary2;
@@ -46,6 +49,7 @@ use crate::grid::Grid2;
 use crate::solve::LinearSolver;
 use crate::Result;
 use rayon::prelude::*;
+use std::borrow::Cow;
 use std::time::Instant;
 
 /// The coarsest level keeps at least this many nodes in each direction.
@@ -60,15 +64,13 @@ pub const COARSE_STOP: f64 = 1e-3;
 /// One level of a nested solve.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LevelInfo {
-    /// Nodes along i.
-    pub ni: usize,
-    /// Nodes along j.
-    pub nj: usize,
+    /// Nodes along i, j (and k for a volume block).
+    pub dims: Vec<usize>,
     /// Picard steps on this level.
     pub steps: usize,
     /// True if this level's Picard iteration converged (its grid then starts the next level).
     pub converged: bool,
-    /// Wall-clock seconds of this level (prolongation included).
+    /// Wall-clock seconds of this level (prolongation and control functions included).
     pub seconds: f64,
 }
 
@@ -80,92 +82,111 @@ pub struct NestedInfo {
     /// Wall-clock seconds of the whole generation (edge functions, control functions, start
     /// grid, every level).
     pub seconds: f64,
-    /// Seconds of one work unit: one assembly + residual of [24] on the finest grid.
+    /// Seconds of one work unit: one assembly + residual of [24] (or [86]) on the finest grid.
     pub work_unit_seconds: f64,
     /// `seconds / work_unit_seconds`.
     pub work_units: f64,
 }
 
-/// Grid sizes of the nested levels, finest first (see the module documentation).
-pub fn level_sizes(ni: usize, nj: usize) -> Vec<(usize, usize)> {
-    let mut v = vec![(ni, nj)];
-    let (mut a, mut b) = (ni, nj);
-    while a % 2 == 1 && b % 2 == 1 && (a - 1) / 2 + 1 >= MIN_NODES && (b - 1) / 2 + 1 >= MIN_NODES {
-        a = (a - 1) / 2 + 1;
-        b = (b - 1) / 2 + 1;
-        v.push((a, b));
+/// Grid sizes of the nested levels of a block of `dims` nodes, finest first (module docs).
+pub(crate) fn sizes<const N: usize>(dims: [usize; N]) -> Vec<[usize; N]> {
+    let mut v = vec![dims];
+    let mut d = dims;
+    while d
+        .iter()
+        .all(|&n| n % 2 == 1 && (n - 1) / 2 + 1 >= MIN_NODES)
+    {
+        d = d.map(|n| (n - 1) / 2 + 1);
+        v.push(d);
     }
     v
 }
 
-/// Grids one block from its boundary with `kind` control functions, by nested iteration if
-/// `params.nested_for(solver.name())` (else plain Picard from the transfinite grid), and
-/// reports the cost in work units. The returned [`PicardInfo`](poisson2d::PicardInfo) is that
-/// of the finest level.
-pub fn grid_block_nested<const D: usize>(
-    b: &Boundary2<D>,
-    kind: ControlKind,
-    solver: &mut dyn LinearSolver,
-    params: &PicardParams,
+/// Grid sizes of the nested levels of a 2D block, finest first (see the module documentation).
+pub fn level_sizes(ni: usize, nj: usize) -> Vec<(usize, usize)> {
+    sizes([ni, nj]).into_iter().map(|[a, b]| (a, b)).collect()
+}
+
+/// What nested iteration needs of a grid type ([`Grid2`], [`crate::Grid3`]).
+pub(crate) trait LevelGrid: Clone {
+    /// Every `stride`-th node in each direction.
+    fn subsample(&self, stride: usize) -> Self;
+    /// Cubic interpolation in index space to the grid with every cell halved.
+    fn prolong(&self) -> Self;
+    /// `f` of the coordinates of `self` and `b` (same size), node by node.
+    fn zip_with(&self, b: &Self, f: impl Fn(f64, f64) -> f64 + Sync) -> Self;
+}
+
+/// One block's nested problem: its finest transfinite grid and its levels' control functions.
+pub(crate) trait Problem {
+    type Grid: LevelGrid;
+    type Ctrl: Clone;
+    /// The transfinite grid x_T of the finest level.
+    fn transfinite(&self) -> &Self::Grid;
+    /// Control functions of level `lev` (stride 2^lev) of `dims` nodes; `place` for errors.
+    fn control(&self, lev: usize, dims: &[usize], place: &str) -> Result<Cow<'_, Self::Ctrl>>;
+}
+
+/// `f(u, v)` of two coordinate arrays, element by element (rayon).
+pub(crate) fn zip_coords(a: &[f64], b: &[f64], f: &(impl Fn(f64, f64) -> f64 + Sync)) -> Vec<f64> {
+    a.par_iter().zip(b).map(|(&u, &v)| f(u, v)).collect()
+}
+
+/// The level loop of nested iteration over `sizes` (finest first), `t0` the start of the
+/// whole generation. `solve(x, ctrl, relative_stop, place, finest)` is the Picard solve of a
+/// level (`poisson2d::solve_timed` / `poisson3d::solve_timed`), returning its info and the
+/// work unit in seconds. The returned [`PicardInfo`] is that of the finest level, with
+/// `work_units` and `coarse_steps` filled in.
+pub(crate) fn run<P: Problem, const N: usize>(
+    p: &P,
+    sizes: &[[usize; N]],
     place: &str,
-) -> Result<(BlockResult<D>, NestedInfo)> {
-    let t0 = Instant::now();
-    let sizes = if params.nested_for(solver.name()) {
-        level_sizes(b.ni(), b.nj())
-    } else {
-        vec![(b.ni(), b.nj())]
-    };
-    let pg = match kind {
-        ControlKind::Algebraic => Some(straight_line(&EdgeFunctions::arclength(b))),
-        ControlKind::Laplace => None,
-    };
-    let tf = transfinite(b);
+    t0: Instant,
+    mut solve: impl FnMut(&mut P::Grid, &P::Ctrl, f64, &str, bool) -> Result<(PicardInfo, f64)>,
+) -> Result<(Solved<P::Grid>, NestedInfo)> {
+    let tf = p.transfinite();
     let mut levels = Vec::new();
     // converged displacements of the two previous (coarser) levels, the last one first
-    let mut prev: Option<(Grid2<D>, Option<Grid2<D>>)> = None;
+    let mut prev: Option<(P::Grid, Option<P::Grid>)> = None;
     for lev in (0..sizes.len()).rev() {
         let tl = Instant::now();
-        let stride = 1 << lev;
-        let (ni, nj) = sizes[lev];
+        let dims = sizes[lev];
         let t_lev = if lev == 0 {
             tf.clone()
         } else {
-            subsample(&tf, stride)
+            tf.subsample(1 << lev)
         };
-        let ctrl = match &pg {
-            Some(pg) if lev == 0 => Control2::from_algebraic(pg),
-            Some(pg) => Control2::from_algebraic(&subsample_param(pg, stride)),
-            None => Control2::zeros([ni, nj]),
-        };
+        let ctrl = p.control(lev, &dims, place)?;
         let mut x = match &prev {
             None => t_lev.clone(),
             Some((d2, d4)) => {
                 let d = match d4 {
-                    Some(d4) => extrapolate(d2, &prolong(d4)),
+                    Some(d4) => d2.zip_with(&d4.prolong(), richardson),
                     None => d2.clone(),
                 };
-                add(&t_lev, &prolong(&d))
+                t_lev.zip_with(&d.prolong(), |u, v| u + v)
             }
         };
-        let lev_place = if lev == 0 {
-            place.to_string()
+        let (lev_place, stop) = if lev == 0 {
+            (place.to_string(), 0.0)
         } else {
-            format!("{place} (nested level {ni} × {nj})")
+            let n: Vec<String> = dims.iter().map(usize::to_string).collect();
+            (
+                format!("{place} (nested level {})", n.join(" × ")),
+                COARSE_STOP,
+            )
         };
-        let stop = if lev == 0 { 0.0 } else { COARSE_STOP };
-        let r = poisson2d::solve_timed(&mut x, &ctrl, solver, params, stop, &lev_place);
+        let r = solve(&mut x, &ctrl, stop, &lev_place, lev == 0);
         let seconds = tl.elapsed().as_secs_f64();
         if lev == 0 {
-            let (picard, wu) = r?;
+            let (mut picard, wu) = r?;
             levels.push(LevelInfo {
-                ni,
-                nj,
+                dims: dims.to_vec(),
                 steps: picard.steps,
                 converged: picard.converged,
                 seconds,
             });
             let total = t0.elapsed().as_secs_f64();
-            let mut picard = picard;
             picard.work_units = Some(total / wu);
             picard.coarse_steps = levels[..levels.len() - 1].iter().map(|l| l.steps).collect();
             let info = NestedInfo {
@@ -174,21 +195,20 @@ pub fn grid_block_nested<const D: usize>(
                 work_unit_seconds: wu,
                 work_units: total / wu,
             };
-            return Ok((BlockResult { grid: x, picard }, info));
+            return Ok((Solved { grid: x, picard }, info));
         }
         let (steps, converged) = match &r {
             Ok((p, _)) => (p.steps, p.converged),
             Err(_) => (0, false),
         };
         levels.push(LevelInfo {
-            ni,
-            nj,
+            dims: dims.to_vec(),
             steps,
             converged,
             seconds,
         });
         prev = if converged {
-            let d = sub(&x, &t_lev);
+            let d = x.zip_with(&t_lev, |u, v| u - v);
             Some((d, prev.map(|(d2, _)| d2)))
         } else {
             None
@@ -197,61 +217,10 @@ pub fn grid_block_nested<const D: usize>(
     unreachable!("the finest level returns")
 }
 
-/// Every `stride`-th node of `g` in each direction.
-fn subsample<const D: usize>(g: &Grid2<D>, stride: usize) -> Grid2<D> {
-    let ni = (g.ni() - 1) / stride + 1;
-    let nj = (g.nj() - 1) / stride + 1;
-    Grid2::from_fn(ni, nj, |i, j| g.point(i * stride, j * stride))
-}
-
-/// Every `stride`-th node of an (s, t) grid.
-fn subsample_param(pg: &ParamGrid, stride: usize) -> ParamGrid {
-    let (fi, fj) = (pg.ni(), pg.nj());
-    let (ni, nj) = ((fi - 1) / stride + 1, (fj - 1) / stride + 1);
-    let mut s = Vec::with_capacity(ni * nj);
-    let mut t = Vec::with_capacity(ni * nj);
-    for j in 0..nj {
-        for i in 0..ni {
-            let (sv, tv) = pg.at(i * stride, j * stride);
-            s.push(sv);
-            t.push(tv);
-        }
-    }
-    ParamGrid::from_parts(ni, nj, s, t)
-}
-
-fn zip_with<const D: usize>(
-    a: &Grid2<D>,
-    b: &Grid2<D>,
-    f: impl Fn(f64, f64) -> f64 + Sync,
-) -> Grid2<D> {
-    let coords = std::array::from_fn(|c| {
-        a.coord(c)
-            .par_iter()
-            .zip(b.coord(c))
-            .map(|(&u, &v)| f(u, v))
-            .collect()
-    });
-    Grid2::from_coords(a.ni(), a.nj(), coords)
-}
-
-fn add<const D: usize>(a: &Grid2<D>, b: &Grid2<D>) -> Grid2<D> {
-    zip_with(a, b, |u, v| u + v)
-}
-
-fn sub<const D: usize>(a: &Grid2<D>, b: &Grid2<D>) -> Grid2<D> {
-    zip_with(a, b, |u, v| u - v)
-}
-
-/// Richardson extrapolation of the displacement `d2` (level 2h) with `p4` (level 4h
-/// interpolated to 2h), assuming an O(h²) difference between the levels.
-fn extrapolate<const D: usize>(d2: &Grid2<D>, p4: &Grid2<D>) -> Grid2<D> {
-    zip_with(d2, p4, richardson)
-}
-
-/// Richardson's step for an O(h²) difference: `d2 + (d2 − p4) / 4` (2D and volume levels).
+/// Richardson's step for an O(h²) difference between the displacement `d2` (level 2h) and
+/// `p4` (level 4h interpolated to 2h): `d2 + (d2 − p4) / 4`.
 #[inline]
-pub(crate) fn richardson(d2: f64, p4: f64) -> f64 {
+fn richardson(d2: f64, p4: f64) -> f64 {
     d2 + 0.25 * (d2 - p4)
 }
 
@@ -270,44 +239,128 @@ pub(crate) fn mid_weights(k: usize, m: usize) -> (usize, [f64; 4]) {
     }
 }
 
-/// Cubic interpolation in index space from a grid to the one with every cell halved.
-fn prolong<const D: usize>(g: &Grid2<D>) -> Grid2<D> {
-    let (mi, mj) = (g.ni(), g.nj());
-    let (fi, fj) = (2 * mi - 1, 2 * mj - 1);
-    let coords = std::array::from_fn(|c| {
-        let v = g.coord(c);
-        // along i: the fine-i values on the coarse rows
-        let mut rows = vec![0.0; fi * mj];
-        rows.par_chunks_mut(fi).enumerate().for_each(|(j, out)| {
-            let src = &v[j * mi..(j + 1) * mi];
-            for k in 0..mi {
-                out[2 * k] = src[k];
-                if k + 1 < mi {
-                    let (s0, w) = mid_weights(k, mi);
-                    out[2 * k + 1] = (0..4).map(|q| w[q] * src.get(s0 + q).unwrap_or(&0.0)).sum();
+/// A 2D block: its transfinite grid and, for algebraic control functions, its (s, t) grid.
+struct Block<const D: usize> {
+    tf: Grid2<D>,
+    pg: Option<ParamGrid>,
+}
+
+impl<const D: usize> Problem for Block<D> {
+    type Grid = Grid2<D>;
+    type Ctrl = Control2;
+
+    fn transfinite(&self) -> &Grid2<D> {
+        &self.tf
+    }
+
+    /// [19, 20] of the fine (s, t) grid sub-sampled, or zero (Laplace).
+    fn control(&self, lev: usize, dims: &[usize], _place: &str) -> Result<Cow<'_, Control2>> {
+        Ok(Cow::Owned(match &self.pg {
+            Some(pg) if lev == 0 => Control2::from_algebraic(pg),
+            Some(pg) => Control2::from_algebraic(&subsample_param(pg, 1 << lev)),
+            None => Control2::zeros([dims[0], dims[1]]),
+        }))
+    }
+}
+
+/// Grids one block from its boundary with `kind` control functions, by nested iteration if
+/// `params.nested_for(solver.name())` (else plain Picard from the transfinite grid), and
+/// reports the cost in work units. The returned [`PicardInfo`](poisson2d::PicardInfo) is that
+/// of the finest level.
+pub fn grid_block_nested<const D: usize>(
+    b: &Boundary2<D>,
+    kind: ControlKind,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    place: &str,
+) -> Result<(crate::elliptic::picard::BlockResult<D>, NestedInfo)> {
+    let t0 = Instant::now();
+    let sizes = if params.nested_for(solver.name()) {
+        sizes([b.ni(), b.nj()])
+    } else {
+        vec![[b.ni(), b.nj()]]
+    };
+    let pg = match kind {
+        ControlKind::Algebraic => Some(straight_line(&EdgeFunctions::arclength(b))),
+        ControlKind::Laplace => None,
+    };
+    let block = Block {
+        tf: transfinite(b),
+        pg,
+    };
+    run(&block, &sizes, place, t0, |x, ctrl, stop, at, _| {
+        poisson2d::solve_timed(x, ctrl, solver, params, stop, at)
+    })
+}
+
+/// Every `stride`-th node of an (s, t) grid.
+fn subsample_param(pg: &ParamGrid, stride: usize) -> ParamGrid {
+    let (fi, fj) = (pg.ni(), pg.nj());
+    let (ni, nj) = ((fi - 1) / stride + 1, (fj - 1) / stride + 1);
+    let mut s = Vec::with_capacity(ni * nj);
+    let mut t = Vec::with_capacity(ni * nj);
+    for j in 0..nj {
+        for i in 0..ni {
+            let (sv, tv) = pg.at(i * stride, j * stride);
+            s.push(sv);
+            t.push(tv);
+        }
+    }
+    ParamGrid::from_parts(ni, nj, s, t)
+}
+
+impl<const D: usize> LevelGrid for Grid2<D> {
+    fn subsample(&self, stride: usize) -> Self {
+        let ni = (self.ni() - 1) / stride + 1;
+        let nj = (self.nj() - 1) / stride + 1;
+        Grid2::from_fn(ni, nj, |i, j| self.point(i * stride, j * stride))
+    }
+
+    fn zip_with(&self, b: &Self, f: impl Fn(f64, f64) -> f64 + Sync) -> Self {
+        let coords = std::array::from_fn(|c| zip_coords(self.coord(c), b.coord(c), &f));
+        Grid2::from_coords(self.ni(), self.nj(), coords)
+    }
+
+    /// Along i on the coarse rows, then whole rows along j.
+    fn prolong(&self) -> Self {
+        let (mi, mj) = (self.ni(), self.nj());
+        let (fi, fj) = (2 * mi - 1, 2 * mj - 1);
+        let coords = std::array::from_fn(|c| {
+            let v = self.coord(c);
+            // along i: the fine-i values on the coarse rows
+            let mut rows = vec![0.0; fi * mj];
+            rows.par_chunks_mut(fi).enumerate().for_each(|(j, out)| {
+                let src = &v[j * mi..(j + 1) * mi];
+                for k in 0..mi {
+                    out[2 * k] = src[k];
+                    if k + 1 < mi {
+                        let (s0, w) = mid_weights(k, mi);
+                        out[2 * k + 1] =
+                            (0..4).map(|q| w[q] * src.get(s0 + q).unwrap_or(&0.0)).sum();
+                    }
                 }
-            }
-        });
-        // along j: whole rows
-        let mut out = vec![0.0; fi * fj];
-        out.par_chunks_mut(fi).enumerate().for_each(|(jf, row)| {
-            if jf % 2 == 0 {
-                row.copy_from_slice(&rows[(jf / 2) * fi..(jf / 2 + 1) * fi]);
-            } else {
-                let (s0, w) = mid_weights(jf / 2, mj);
-                for (q, wq) in w.iter().enumerate() {
-                    if *wq != 0.0 {
-                        let src = &rows[(s0 + q) * fi..(s0 + q + 1) * fi];
-                        for (o, s) in row.iter_mut().zip(src) {
-                            *o += wq * s;
+            });
+            // along j: whole rows
+            let mut out = vec![0.0; fi * fj];
+            out.par_chunks_mut(fi).enumerate().for_each(|(jf, row)| {
+                if jf % 2 == 0 {
+                    row.copy_from_slice(&rows[(jf / 2) * fi..(jf / 2 + 1) * fi]);
+                } else {
+                    let (s0, w) = mid_weights(jf / 2, mj);
+                    for (q, wq) in w.iter().enumerate() {
+                        if *wq != 0.0 {
+                            let src = &rows[(s0 + q) * fi..(s0 + q + 1) * fi];
+                            for (o, s) in row.iter_mut().zip(src) {
+                                *o += wq * s;
+                            }
                         }
                     }
                 }
-            }
+            });
+            out
         });
-        out
-    });
-    Grid2::from_coords(fi, fj, coords)
+        Grid2::from_coords(fi, fj, coords)
+    }
 }
 
 #[cfg(test)]
@@ -325,7 +378,7 @@ mod tests {
     fn prolongation_is_exact_for_cubics() {
         let f = |i: f64, j: f64| [i * i * i - 2.0 * i * j * j + j, 0.5 * j * j * j - i];
         let g = Grid2::<2>::from_fn(7, 5, |i, j| f(2.0 * i as f64, 2.0 * j as f64));
-        let p = prolong(&g);
+        let p = g.prolong();
         assert_eq!((p.ni(), p.nj()), (13, 9));
         for j in 0..9 {
             for i in 0..13 {

@@ -1,12 +1,12 @@
-//! Nested iteration for the volume grid system [86]–[88]: solve it on coarser grids first, so
-//! that the Picard iteration ([`crate::elliptic::poisson3d`]) on the finest grid starts next to its
-//! solution. The 3D counterpart of [`crate::elliptic::nested`], with the same rules.
+//! Nested iteration for the volume grid system [86]–[88]: the volume side of
+//! [`crate::elliptic::nested`], whose level loop, rules and [`NestedInfo`] it uses; here are
+//! what differs in 3D: the control functions of a coarse level and the tensor-product
+//! prolongation.
 //!
 //! # Levels
-//! Level ℓ keeps every 2^ℓ-th node of the block in each direction. Coarsening goes on while
-//! all three dimensions are odd and the coarser level keeps at least
-//! [`MIN_NODES`] nodes each way; a block with an even dimension is
-//! solved by plain Picard.
+//! Coarsening goes on while all three dimensions are odd and the coarser level keeps at least
+//! [`MIN_NODES`](crate::elliptic::nested::MIN_NODES) nodes each way; a block with an even
+//! dimension is solved by plain Picard.
 //!
 //! # The coarse problems are restrictions of the fine one
 //! A coarse block's faces are the fine faces sub-sampled, and its control functions [83, 84]
@@ -18,14 +18,10 @@
 //! is the O(h²) discretization difference only.
 //!
 //! # Prolongation
-//! What is interpolated is the displacement d = x − x_T from the transfinite grid x_T (zero on
-//! the boundary; x_T of a coarse level is x_T of the fine level sub-sampled, exactly), by
-//! tensor-product cubic interpolation in index space (one direction after the other). With two
-//! coarse levels the displacement on level ℓ + 1 is first extrapolated in the manner of
-//! Richardson, d ← d_2h + (d_2h − P d_4h) / 4. A coarse level stops at
-//! [`COARSE_STOP`] times its first update (or at the Picard
-//! tolerance); the finest at the Picard tolerance. A level whose Picard iteration fails or does
-//! not converge is skipped: the next level starts from the transfinite grid.
+//! The displacement d = x − x_T from the transfinite grid is interpolated by tensor-product
+//! cubic interpolation in index space (one direction after the other), then as in 2D
+//! (Richardson's step with two coarse levels, [`COARSE_STOP`](crate::elliptic::nested::COARSE_STOP)
+//! on coarse levels, failed levels skipped).
 //!
 //! # Work units
 //! A work unit (WU) is the time of one evaluation of the residual of [86] with its assembly
@@ -54,7 +50,9 @@
 use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3};
 use crate::algebraic::control3d::Control3;
 use crate::algebraic::ControlKind;
-use crate::elliptic::nested::{mid_weights, richardson, COARSE_STOP, MIN_NODES};
+use crate::elliptic::nested::{
+    mid_weights, run, sizes, zip_coords, LevelGrid, LevelInfo, NestedInfo, Problem,
+};
 use crate::elliptic::picard::VolumeResult;
 use crate::elliptic::picard::{PicardParams, PicardStep};
 use crate::elliptic::poisson3d;
@@ -62,34 +60,14 @@ use crate::grid::faces::{transfinite, Faces};
 use crate::solve::LinearSolver3;
 use crate::{Grid3, Result};
 use rayon::prelude::*;
+use std::borrow::Cow;
 use std::time::Instant;
 
-/// One level of a nested volume solve.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct LevelInfo3 {
-    pub ni: usize,
-    pub nj: usize,
-    pub nk: usize,
-    /// Picard steps on this level.
-    pub steps: usize,
-    /// True if this level's Picard iteration converged (its grid then starts the next level).
-    pub converged: bool,
-    /// Wall-clock seconds of this level (prolongation and control functions included).
-    pub seconds: f64,
-}
+/// One level of a nested volume solve (the same as a 2D one's).
+pub type LevelInfo3 = LevelInfo;
 
-/// What a (nested) volume grid generation cost.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct NestedInfo3 {
-    /// The levels, coarsest first; the last one is the block itself.
-    pub levels: Vec<LevelInfo3>,
-    /// Wall-clock seconds of the whole generation.
-    pub seconds: f64,
-    /// Seconds of one work unit: one assembly + residual of [86] on the finest grid.
-    pub work_unit_seconds: f64,
-    /// `seconds / work_unit_seconds`.
-    pub work_units: f64,
-}
+/// What a (nested) volume grid generation cost (the same as a 2D one's).
+pub type NestedInfo3 = NestedInfo;
 
 /// Whether nested iteration is used for a volume block with the solver called `solver_name`:
 /// `params.nested` if set, else [`PicardParams::nested_for`] (on with "multigrid") or the
@@ -100,16 +78,36 @@ pub fn nested_for3(params: &PicardParams, solver_name: &str) -> bool {
 
 /// Grid sizes of the nested levels, finest first (module docs).
 pub fn level_sizes3(dims: [usize; 3]) -> Vec<[usize; 3]> {
-    let mut v = vec![dims];
-    let mut d = dims;
-    while d
-        .iter()
-        .all(|&n| n % 2 == 1 && (n - 1) / 2 + 1 >= MIN_NODES)
-    {
-        d = d.map(|n| (n - 1) / 2 + 1);
-        v.push(d);
+    sizes(dims)
+}
+
+/// A volume block: its transfinite grid, its arclength edge functions (algebraic control
+/// functions) and the finest level's control functions.
+struct Volume {
+    tf: Grid3,
+    ef: Option<EdgeFunctions3>,
+    fine_ctrl: Control3,
+}
+
+impl Problem for Volume {
+    type Grid = Grid3;
+    type Ctrl = Control3;
+
+    fn transfinite(&self) -> &Grid3 {
+        &self.tf
     }
-    v
+
+    /// [83, 84] of the bilinear (s, t, u) grid of the sub-sampled edge functions, or zero.
+    fn control(&self, lev: usize, dims: &[usize], place: &str) -> Result<Cow<'_, Control3>> {
+        Ok(match &self.ef {
+            _ if lev == 0 => Cow::Borrowed(&self.fine_ctrl),
+            Some(ef) => Cow::Owned(Control3::from_algebraic(&bilinear(
+                &subsample_edges(ef, 1 << lev),
+                place,
+            )?)),
+            None => Cow::Owned(Control3::zeros([dims[0], dims[1], dims[2]])),
+        })
+    }
 }
 
 /// Grids one volume block from its faces with `kind` control functions, by nested iteration
@@ -124,10 +122,10 @@ pub fn grid_volume_nested(
     params: &PicardParams,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
-) -> Result<(VolumeResult, NestedInfo3)> {
+) -> Result<(VolumeResult, NestedInfo)> {
     let t0 = Instant::now();
     let sizes = if nested_for3(params, solver.name()) {
-        level_sizes3(faces.dims())
+        sizes(faces.dims())
     } else {
         vec![faces.dims()]
     };
@@ -141,105 +139,17 @@ pub fn grid_volume_nested(
         Some(ef) => Control3::from_algebraic(&bilinear(ef, place)?),
         None => Control3::zeros(faces.dims()),
     };
-    let tf = transfinite(faces);
-    let mut levels = Vec::new();
-    // converged displacements of the two previous (coarser) levels, the last one first
-    let mut prev: Option<(Grid3, Option<Grid3>)> = None;
-    for lev in (0..sizes.len()).rev() {
-        let tl = Instant::now();
-        let stride = 1 << lev;
-        let [ni, nj, nk] = sizes[lev];
-        let t_lev = if lev == 0 {
-            tf.clone()
+    let volume = Volume {
+        tf: transfinite(faces),
+        ef,
+        fine_ctrl,
+    };
+    run(&volume, &sizes, place, t0, |x, ctrl, stop, at, finest| {
+        if finest {
+            poisson3d::solve_timed(x, ctrl, solver, params, stop, at, progress)
         } else {
-            subsample(&tf, stride)
-        };
-        let lev_place = if lev == 0 {
-            place.to_string()
-        } else {
-            format!("{place} (nested level {ni} × {nj} × {nk})")
-        };
-        let coarse_ctrl;
-        let ctrl = match &ef {
-            _ if lev == 0 => &fine_ctrl,
-            Some(ef) => {
-                coarse_ctrl =
-                    Control3::from_algebraic(&bilinear(&subsample_edges(ef, stride), place)?);
-                &coarse_ctrl
-            }
-            None => {
-                coarse_ctrl = Control3::zeros(sizes[lev]);
-                &coarse_ctrl
-            }
-        };
-        let mut x = match &prev {
-            None => t_lev.clone(),
-            Some((d2, d4)) => {
-                let d = match d4 {
-                    Some(d4) => extrapolate(d2, &prolong(d4)),
-                    None => d2.clone(),
-                };
-                zip_with(&t_lev, &prolong(&d), |u, v| u + v)
-            }
-        };
-        if lev == 0 {
-            let (mut picard, wu) =
-                poisson3d::solve_timed(&mut x, ctrl, solver, params, 0.0, place, progress)?;
-            levels.push(LevelInfo3 {
-                ni,
-                nj,
-                nk,
-                steps: picard.steps,
-                converged: picard.converged,
-                seconds: tl.elapsed().as_secs_f64(),
-            });
-            let total = t0.elapsed().as_secs_f64();
-            picard.work_units = Some(total / wu);
-            picard.coarse_steps = levels[..levels.len() - 1].iter().map(|l| l.steps).collect();
-            let info = NestedInfo3 {
-                levels,
-                seconds: total,
-                work_unit_seconds: wu,
-                work_units: total / wu,
-            };
-            return Ok((VolumeResult { grid: x, picard }, info));
+            poisson3d::solve_timed(x, ctrl, solver, params, stop, at, &mut |_, _| {})
         }
-        let r = poisson3d::solve_timed(
-            &mut x,
-            ctrl,
-            solver,
-            params,
-            COARSE_STOP,
-            &lev_place,
-            &mut |_, _| {},
-        );
-        let (steps, converged) = match &r {
-            Ok((p, _)) => (p.steps, p.converged),
-            Err(_) => (0, false),
-        };
-        levels.push(LevelInfo3 {
-            ni,
-            nj,
-            nk,
-            steps,
-            converged,
-            seconds: tl.elapsed().as_secs_f64(),
-        });
-        prev = if converged {
-            let d = zip_with(&x, &t_lev, |u, v| u - v);
-            Some((d, prev.map(|(d2, _)| d2)))
-        } else {
-            None
-        };
-    }
-    unreachable!("the finest level returns")
-}
-
-/// Every `stride`-th node of `g` in each direction.
-fn subsample(g: &Grid3, stride: usize) -> Grid3 {
-    let d = g.dims().map(|n| (n - 1) / stride + 1);
-    Grid3::from_fn(d[0], d[1], d[2], |i, j, k| {
-        g.point(i * stride, j * stride, k * stride)
     })
 }
 
@@ -255,22 +165,33 @@ fn subsample_edges(ef: &EdgeFunctions3, stride: usize) -> EdgeFunctions3 {
     }
 }
 
-fn zip_with(a: &Grid3, b: &Grid3, f: impl Fn(f64, f64) -> f64 + Sync) -> Grid3 {
-    let [ni, nj, nk] = a.dims();
-    let coords = std::array::from_fn(|c| {
-        a.coord(c)
-            .par_iter()
-            .zip(b.coord(c))
-            .map(|(&u, &v)| f(u, v))
-            .collect()
-    });
-    Grid3::from_coords(ni, nj, nk, coords)
-}
+impl LevelGrid for Grid3 {
+    fn subsample(&self, stride: usize) -> Self {
+        let d = self.dims().map(|n| (n - 1) / stride + 1);
+        Grid3::from_fn(d[0], d[1], d[2], |i, j, k| {
+            self.point(i * stride, j * stride, k * stride)
+        })
+    }
 
-/// Richardson extrapolation of the displacement `d2` (level 2h) with `p4` (level 4h
-/// interpolated to 2h), assuming an O(h²) difference between the levels.
-fn extrapolate(d2: &Grid3, p4: &Grid3) -> Grid3 {
-    zip_with(d2, p4, richardson)
+    fn zip_with(&self, b: &Self, f: impl Fn(f64, f64) -> f64 + Sync) -> Self {
+        let [ni, nj, nk] = self.dims();
+        let coords = std::array::from_fn(|c| zip_coords(self.coord(c), b.coord(c), &f));
+        Grid3::from_coords(ni, nj, nk, coords)
+    }
+
+    /// Tensor-product: along i, then j, then k.
+    fn prolong(&self) -> Self {
+        let mut dims = self.dims();
+        let coords = std::array::from_fn(|c| {
+            let (mut v, mut d) = (self.coord(c).to_vec(), self.dims());
+            for ax in 0..3 {
+                (v, d) = prolong_axis(&v, d, ax);
+            }
+            dims = d;
+            v
+        });
+        Grid3::from_coords(dims[0], dims[1], dims[2], coords)
+    }
 }
 
 /// Cubic interpolation in index space along axis `ax` of the array `v` of dims `d` to the
@@ -306,21 +227,6 @@ fn prolong_axis(v: &[f64], d: [usize; 3], ax: usize) -> (Vec<f64>, [usize; 3]) {
     (out, e)
 }
 
-/// Tensor-product cubic interpolation in index space from a grid to the one with every cell
-/// halved in each direction.
-fn prolong(g: &Grid3) -> Grid3 {
-    let mut dims = g.dims();
-    let coords = std::array::from_fn(|c| {
-        let (mut v, mut d) = (g.coord(c).to_vec(), g.dims());
-        for ax in 0..3 {
-            (v, d) = prolong_axis(&v, d, ax);
-        }
-        dims = d;
-        v
-    });
-    Grid3::from_coords(dims[0], dims[1], dims[2], coords)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -348,7 +254,7 @@ mod tests {
         let g = Grid3::from_fn(7, 5, 4, |i, j, k| {
             f(2.0 * i as f64, 2.0 * j as f64, 2.0 * k as f64)
         });
-        let p = prolong(&g);
+        let p = g.prolong();
         assert_eq!(p.dims(), [13, 9, 7]);
         for k in 0..7 {
             for j in 0..9 {
