@@ -86,12 +86,6 @@ mod tests {
     use super::*;
     use crate::solve::solver3d::{BiCgStabIlu, DirectLu3};
 
-    fn box_grid(xs: &[f64], ys: &[f64], zs: &[f64]) -> Grid3 {
-        Grid3::from_fn(xs.len(), ys.len(), zs.len(), |i, j, k| {
-            [xs[i], ys[j], zs[k]]
-        })
-    }
-
     #[test]
     fn tensor_product_box_is_an_exact_discrete_solution() {
         let xs: Vec<f64> = (0..9).map(|k| 2.0 * (k as f64 / 8.0).powf(1.5)).collect();
@@ -101,7 +95,7 @@ mod tests {
         let zs: Vec<f64> = (0..8)
             .map(|k| 0.5 * (k as f64 / 7.0).powi(2) + 0.3 * k as f64 / 7.0)
             .collect();
-        let exact = box_grid(&xs, &ys, &zs);
+        let exact = Grid3::rectilinear(&xs, &ys, &zs);
         let faces = Faces::from_grid(&exact);
         for solver in [
             &mut DirectLu3::new() as &mut dyn LinearSolver3,
