@@ -10,7 +10,7 @@
 //! | 19-point operator | [`crate::solve::stencil19`] |
 //! | grid system [86–88], (inexact) Picard | [`crate::elliptic::poisson3d`] |
 //! | nested iteration, work units | [`crate::elliptic::nested3d`] |
-//! | linear solvers (Bi-CGSTAB/ILU(0), faer LU, multigrid) | [`crate::solve::solver3d`], [`crate::solve::multigrid3d`] |
+//! | linear solvers (Bi-CGSTAB/ILU(0), faer LU, multigrid) | [`crate::solve::ilu`], [`crate::solve::direct`], [`crate::solve::multigrid3d`] |
 //! | quality report | [`crate::quality::quality3d`] |
 //! | prescribed first-cell heights at a wall face | [`crate::elliptic::wall`] |
 //! | case-file volume blocks; runs and smoothing | [`crate::case::volume`]; [`crate::job::volume`] |
@@ -84,7 +84,7 @@ pub fn grid_volume(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solve::solver3d::{BiCgStabIlu, DirectLu3};
+    use crate::solve::{direct::DirectLu3, ilu::BiCgStabIlu};
 
     #[test]
     fn tensor_product_box_is_an_exact_discrete_solution() {
