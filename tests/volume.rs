@@ -11,7 +11,7 @@ use ellipgrid::elliptic::volume::grid_volume;
 use ellipgrid::grid::faces::{transfinite, Faces};
 use ellipgrid::io::plot3d::{read_plot3d, write_plot3d, Plot3dFormat};
 use ellipgrid::io::Block;
-use ellipgrid::solve::solver3d::BiCgStabIlu;
+use ellipgrid::solve::ilu::BiCgStabIlu;
 use ellipgrid::solve::SolveError;
 use ellipgrid::Grid3;
 use std::fs;

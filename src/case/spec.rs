@@ -279,7 +279,7 @@ pub struct VolumeSpec {
     pub nj: usize,
     pub nk: usize,
     /// Linear solver of each Picard step: "auto" (default: the 3D multigrid from
-    /// [`crate::solve::solver3d::AUTO_MULTIGRID_NODES`] nodes, else Bi-CGSTAB/ILU(0)), "multigrid",
+    /// [`crate::solve::select::AUTO_MULTIGRID_NODES`] nodes, else Bi-CGSTAB/ILU(0)), "multigrid",
     /// "bicgstab" or "direct" (small blocks).
     #[serde(default = "auto")]
     pub linear: String,

@@ -10,7 +10,7 @@
 //! | 19-point operator | [`crate::solve::stencil19`] |
 //! | grid system [86–88], (inexact) Picard | [`crate::elliptic::poisson3d`] |
 //! | nested iteration, work units | [`crate::elliptic::nested3d`] |
-//! | linear solvers (Bi-CGSTAB/ILU(0), faer LU, multigrid) | [`crate::solve::solver3d`], [`crate::solve::multigrid3d`] |
+//! | linear solvers (Bi-CGSTAB/ILU(0), faer LU, multigrid) | [`crate::solve::ilu`], [`crate::solve::direct`], [`crate::solve::multigrid3d`] |
 //! | quality report | [`crate::quality::quality3d`] |
 //! | prescribed first-cell heights at a wall face | [`crate::elliptic::wall`] |
 //! | case-file volume blocks; runs and smoothing | [`crate::case::volume`]; [`crate::job::volume`] |
@@ -84,13 +84,7 @@ pub fn grid_volume(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solve::solver3d::{BiCgStabIlu, DirectLu3};
-
-    fn box_grid(xs: &[f64], ys: &[f64], zs: &[f64]) -> Grid3 {
-        Grid3::from_fn(xs.len(), ys.len(), zs.len(), |i, j, k| {
-            [xs[i], ys[j], zs[k]]
-        })
-    }
+    use crate::solve::{direct::DirectLu3, ilu::BiCgStabIlu};
 
     #[test]
     fn tensor_product_box_is_an_exact_discrete_solution() {
@@ -101,7 +95,7 @@ mod tests {
         let zs: Vec<f64> = (0..8)
             .map(|k| 0.5 * (k as f64 / 7.0).powi(2) + 0.3 * k as f64 / 7.0)
             .collect();
-        let exact = box_grid(&xs, &ys, &zs);
+        let exact = Grid3::rectilinear(&xs, &ys, &zs);
         let faces = Faces::from_grid(&exact);
         for solver in [
             &mut DirectLu3::new() as &mut dyn LinearSolver3,

@@ -553,7 +553,7 @@ mod tests {
         let r = grid_volume_wall(
             &faces,
             w,
-            &mut crate::solve::solver3d::DirectLu3::new(),
+            &mut crate::solve::direct::DirectLu3::new(),
             &PicardParams::default(),
             "box",
             &mut |_, _| {},

@@ -370,7 +370,7 @@ mod tests {
     use crate::elliptic::wall::{grid_volume_wall_with, wall_targets, WallOptions};
     use crate::grid::faces::parse_face;
     use crate::grid::faces::Faces;
-    use crate::solve::solver3d::DirectLu3;
+    use crate::solve::direct::DirectLu3;
 
     /// A sheared box: flat wall y = 0 (F3), side faces F1, F2 leaning by `lean` (x = ξ + lean
     /// y), clustered towards the wall.

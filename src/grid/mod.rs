@@ -229,6 +229,13 @@ impl Grid3 {
         g
     }
 
+    /// The rectilinear (tensor-product) grid with node (i, j, k) at (xs[i], ys[j], zs[k]).
+    pub fn rectilinear(xs: &[f64], ys: &[f64], zs: &[f64]) -> Self {
+        Self::from_fn(xs.len(), ys.len(), zs.len(), |i, j, k| {
+            [xs[i], ys[j], zs[k]]
+        })
+    }
+
     /// A grid from coordinate arrays (i fastest, then j, then k).
     ///
     /// # Panics

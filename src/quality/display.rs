@@ -20,14 +20,34 @@ pub(super) fn num(v: f64) -> String {
     }
 }
 
-/// One table line: the metric name, then (label, value) columns with right-aligned values.
-fn table_line(name: &str, cols: &[(&str, String)]) -> String {
-    let mut l = format!("  {name:<20}");
+/// One table line: the metric name in `width` columns, then (label, value) columns with
+/// right-aligned values.
+pub(super) fn table_line(width: usize, name: &str, cols: &[(&str, String)]) -> String {
+    let mut l = format!("  {name:<width$}");
     for (label, v) in cols {
         l += &format!(" {label:>4} {v:>10}");
     }
     l
 }
+
+/// "   first: (i,j) (i,j) …" of the first listed cells out of `count` ("" if none is listed).
+pub(super) fn first_cells<const N: usize>(first: &[[usize; N]], count: usize) -> String {
+    if first.is_empty() {
+        return String::new();
+    }
+    let mut l = "   first:".to_string();
+    for c in first {
+        let idx: Vec<String> = c.iter().map(|v| v.to_string()).collect();
+        l += &format!(" ({})", idx.join(","));
+    }
+    if count > first.len() {
+        l += " …";
+    }
+    l
+}
+
+/// Width of the metric names in the planar report.
+const NAME_WIDTH: usize = 20;
 
 impl fmt::Display for QualityReport {
     /// A compact table, one metric a line, one line per edge for orthogonality.
@@ -38,17 +58,10 @@ impl fmt::Display for QualityReport {
             "grid quality  {} x {} nodes, {} cells, {}: {}",
             self.ni, self.nj, self.cells, self.orientation, status
         )?;
+        let table_line = |name: &str, cols: &[(&str, String)]| table_line(NAME_WIDTH, name, cols);
         let min_max = |a: f64, b: f64| [("min", num(a)), ("max", num(b))];
         let mut folded = table_line("folded cells", &[("", self.folded_cells.to_string())]);
-        if !self.first_folded.is_empty() {
-            folded += "   first:";
-            for [i, j] in &self.first_folded {
-                folded += &format!(" ({i},{j})");
-            }
-            if self.folded_cells > self.first_folded.len() {
-                folded += " …";
-            }
-        }
+        folded += &first_cells(&self.first_folded, self.folded_cells);
         let lines = [
             table_line("jacobian", &min_max(self.jacobian_min, self.jacobian_max)),
             table_line("scaled jacobian", &[("min", num(self.scaled_jacobian_min))]),
@@ -79,10 +92,13 @@ impl fmt::Display for QualityReport {
     }
 }
 
-/// "cell (i, j), …" for messages about folded cells.
-pub(crate) fn cell_list(c: &[[usize; 2]]) -> String {
+/// "cell (i, j), …" or "cell (i, j, k), …" for messages about folded cells.
+pub(crate) fn cell_list<const N: usize>(c: &[[usize; N]]) -> String {
     c.iter()
-        .map(|c| format!("cell ({}, {})", c[0], c[1]))
+        .map(|c| {
+            let idx: Vec<String> = c.iter().map(|v| v.to_string()).collect();
+            format!("cell ({})", idx.join(", "))
+        })
         .collect::<Vec<_>>()
         .join(", ")
 }

@@ -39,6 +39,7 @@ pub(crate) use display::cell_list;
 mod geom;
 mod json_f64;
 pub mod quality3d;
+mod stats;
 #[cfg(test)]
 mod tests;
 
@@ -48,7 +49,8 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::{Edge, Grid2};
-use geom::{angle_deg, corner_jacobians, eval_cell, growth_ratio, nmax, nmin, norm, sub, Nodes};
+use geom::{angle_deg, corner_jacobians, eval_cell, nmax, nmin, sub, Nodes};
+use stats::{lines, CellStats};
 
 /// At most this many folded cells are listed in [`QualityReport::first_folded`].
 pub const MAX_FIRST_FOLDED: usize = 10;
@@ -221,107 +223,18 @@ fn orientation(nd: &Nodes) -> (Orientation, f64) {
     }
 }
 
-/// Running extremes and sums over a part of the grid (one row of nodes and the cells above it).
-struct Acc {
-    jmin: f64,
-    jmax: f64,
-    smin: f64,
-    skew_max: f64,
-    skew_sum: f64,
-    aspect_max: f64,
-    growth_i: f64,
-    growth_j: f64,
-    hmin: f64,
-    hmax: f64,
-    folded: usize,
-    first: Vec<[usize; 2]>,
-}
-
-impl Acc {
-    fn new() -> Self {
-        Acc {
-            jmin: f64::INFINITY,
-            jmax: f64::NEG_INFINITY,
-            smin: f64::INFINITY,
-            skew_max: f64::NEG_INFINITY,
-            skew_sum: 0.0,
-            aspect_max: f64::NEG_INFINITY,
-            growth_i: 1.0,
-            growth_j: 1.0,
-            hmin: f64::INFINITY,
-            hmax: f64::NEG_INFINITY,
-            folded: 0,
-            first: Vec::new(),
-        }
-    }
-
-    fn spacing(&mut self, h: f64) {
-        self.hmin = nmin(self.hmin, h);
-        self.hmax = nmax(self.hmax, h);
-    }
-
-    /// Merges `b`, which covers cells after those of `self` in index order.
-    fn merge(mut self, b: Acc) -> Acc {
-        self.jmin = nmin(self.jmin, b.jmin);
-        self.jmax = nmax(self.jmax, b.jmax);
-        self.smin = nmin(self.smin, b.smin);
-        self.skew_max = nmax(self.skew_max, b.skew_max);
-        self.skew_sum += b.skew_sum;
-        self.aspect_max = nmax(self.aspect_max, b.aspect_max);
-        self.growth_i = nmax(self.growth_i, b.growth_i);
-        self.growth_j = nmax(self.growth_j, b.growth_j);
-        self.hmin = nmin(self.hmin, b.hmin);
-        self.hmax = nmax(self.hmax, b.hmax);
-        self.folded += b.folded;
-        let room = MAX_FIRST_FOLDED - self.first.len();
-        self.first.extend(b.first.into_iter().take(room));
-        self
-    }
-}
-
-/// Spacings and growth along row j of nodes, spacings and growth of the j-lines from row j to
-/// row j + 1, and the cells of row j.
-fn row(nd: &Nodes, j: usize, s: f64) -> Acc {
-    let (ni, nj) = (nd.ni, nd.nj);
-    let mut a = Acc::new();
-    let mut prev = f64::NAN;
-    for i in 0..ni - 1 {
-        let h = norm(sub(nd.p(i + 1, j), nd.p(i, j)));
-        a.spacing(h);
-        if i > 0 {
-            a.growth_i = nmax(a.growth_i, growth_ratio(prev, h));
-        }
-        prev = h;
-    }
-    if j + 1 == nj {
-        return a;
-    }
-    for i in 0..ni {
-        let h = norm(sub(nd.p(i, j + 1), nd.p(i, j)));
-        a.spacing(h);
-        if j > 0 {
-            let hp = norm(sub(nd.p(i, j), nd.p(i, j - 1)));
-            a.growth_j = nmax(a.growth_j, growth_ratio(hp, h));
-        }
-    }
-    for i in 0..ni - 1 {
+/// The cells of row j (those with lower-left node in row j of nodes).
+fn row(nd: &Nodes, j: usize, s: f64) -> CellStats<2> {
+    let mut a = CellStats::new();
+    for i in 0..nd.ni - 1 {
         let c = nd.cell(i, j);
         let n = nd.normal(&c);
         let e = eval_cell(&c, n, s);
-        a.jmin = nmin(a.jmin, e.jmin);
-        a.jmax = nmax(a.jmax, e.jmax);
-        a.smin = nmin(a.smin, e.smin);
-        a.skew_max = nmax(a.skew_max, e.skew);
-        a.skew_sum += e.skew;
-        a.aspect_max = nmax(a.aspect_max, e.aspect);
+        a.add(e.jmin, e.jmax, e.smin, e.skew, e.aspect);
         // Written so that a NaN Jacobian counts as folded.
         let corner_ok = e.jmin > 0.0;
-        let folded = !corner_ok || (nd.surface && nd.flipped(i, j, n));
-        if folded {
-            a.folded += 1;
-            if a.first.len() < MAX_FIRST_FOLDED {
-                a.first.push([i, j]);
-            }
+        if !corner_ok || (nd.surface && nd.flipped(i, j, n)) {
+            a.folded.push([i, j]);
         }
     }
     a
@@ -398,9 +311,21 @@ fn report(nd: &Nodes) -> QualityReport {
             max_spacing: nan,
         };
     }
-    // One accumulator per row of nodes, merged in row order so that `first` stays in index order.
-    let rows: Vec<Acc> = (0..nd.nj).into_par_iter().map(|j| row(nd, j, s)).collect();
-    let a = rows.into_iter().fold(Acc::new(), Acc::merge);
+    // One accumulator per row of cells, merged in row order so that the first folded cells stay
+    // in index order.
+    let rows: Vec<CellStats<2>> = (0..nd.nj - 1)
+        .into_par_iter()
+        .map(|j| row(nd, j, s))
+        .collect();
+    let a = rows.into_iter().fold(CellStats::new(), |mut a, b| {
+        a.merge(b);
+        a
+    });
+    let point = |[i, j]: [usize; 2]| nd.p(i, j);
+    let (gi, gj) = (
+        lines([nd.ni, nd.nj], 0, point),
+        lines([nd.ni, nd.nj], 1, point),
+    );
     QualityReport {
         ni: nd.ni,
         nj: nd.nj,
@@ -409,8 +334,8 @@ fn report(nd: &Nodes) -> QualityReport {
         jacobian_min: a.jmin,
         jacobian_max: a.jmax,
         scaled_jacobian_min: a.smin,
-        folded_cells: a.folded,
-        first_folded: a.first,
+        folded_cells: a.folded.count,
+        first_folded: a.folded.first,
         skewness_max: a.skew_max,
         skewness_mean: a.skew_sum / cells as f64,
         orthogonality: Edge::ALL
@@ -418,10 +343,10 @@ fn report(nd: &Nodes) -> QualityReport {
             .map(|&e| edge_orthogonality(nd, e))
             .collect(),
         aspect_ratio_max: a.aspect_max,
-        growth_i_max: a.growth_i,
-        growth_j_max: a.growth_j,
-        min_spacing: a.hmin,
-        max_spacing: a.hmax,
+        growth_i_max: gi.0,
+        growth_j_max: gj.0,
+        min_spacing: nmin(gi.1, gj.1),
+        max_spacing: nmax(gi.2, gj.2),
     }
 }
 

@@ -1,10 +1,16 @@
-//! Sparse direct reference solver: faer's sparse LU of the assembled nine-point matrix.
+//! Sparse direct reference solvers: faer's sparse LU of the assembled nine-point ([`DirectLu`],
+//! 2D) or 19-point ([`DirectLu3`], volume blocks) matrix, one wrapper ([`SparseDirect`]) over
+//! both stencils.
 //!
-//! Exact to round-off, so it is the reference the iterative solvers are checked against in
-//! tests; its memory grows like N^1.5 log N, so it suits grids up to a few 10⁵ nodes.
+//! Exact to round-off, so they are the reference the iterative solvers are checked against in
+//! tests; the memory grows like N^1.5 log N in 2D, and the fill like N^{4/3} in 3D, so they
+//! suit grids up to a few 10⁵ nodes and volume blocks below ~40³ nodes.
 
+use std::marker::PhantomData;
+
+use crate::solve::stencil19::Stencil19;
 use crate::solve::stencil9::Stencil9;
-use crate::solve::{LinearSolver, SolveControl, SolveError, SolveInfo};
+use crate::solve::{LinearSolver, LinearSolver3, SolveControl, SolveError, SolveInfo};
 use faer::linalg::solvers::Solve;
 use faer::sparse::{linalg::solvers::Lu, SparseColMat, Triplet};
 
@@ -42,59 +48,134 @@ impl SparseLu {
     }
 }
 
-/// faer sparse LU of a [`Stencil9`].
-#[derive(Default)]
-pub struct DirectLu {
-    lu: Option<SparseLu>,
+/// A structured operator as a sparse matrix: its order and its nonzero entries.
+pub trait Assemble {
+    /// Number of unknowns (rows and columns).
+    fn order(&self) -> usize;
+
+    /// The nonzero entries inside the grid in faer's triplet form (row, column, value).
+    fn triplets(&self) -> Vec<Triplet<usize, usize, f64>>;
 }
 
-impl DirectLu {
-    /// A solver that factors on `setup`.
-    pub fn new() -> Self {
-        Self::default()
+impl Assemble for Stencil9 {
+    fn order(&self) -> usize {
+        self.len()
     }
-}
 
-/// The stencil as a sparse matrix in faer's triplet form.
-fn triplets(a: &Stencil9) -> Vec<Triplet<usize, usize, f64>> {
-    let (nx, ny) = (a.nx(), a.ny());
-    let mut t = Vec::with_capacity(9 * nx * ny);
-    for j in 0..ny {
-        for i in 0..nx {
-            let p = i + nx * j;
-            for dj in 0..3usize {
-                for di in 0..3usize {
-                    let v = a.row(i, j)[di + 3 * dj];
-                    let (ii, jj) = ((i + di) as isize - 1, (j + dj) as isize - 1);
-                    if v != 0.0 && ii >= 0 && jj >= 0 && (ii as usize) < nx && (jj as usize) < ny {
-                        t.push(Triplet::new(p, ii as usize + nx * jj as usize, v));
+    fn triplets(&self) -> Vec<Triplet<usize, usize, f64>> {
+        let (nx, ny) = (self.nx(), self.ny());
+        let mut t = Vec::with_capacity(9 * nx * ny);
+        for j in 0..ny {
+            for i in 0..nx {
+                let p = i + nx * j;
+                for dj in 0..3usize {
+                    for di in 0..3usize {
+                        let v = self.row(i, j)[di + 3 * dj];
+                        let (ii, jj) = ((i + di) as isize - 1, (j + dj) as isize - 1);
+                        if v != 0.0
+                            && ii >= 0
+                            && jj >= 0
+                            && (ii as usize) < nx
+                            && (jj as usize) < ny
+                        {
+                            t.push(Triplet::new(p, ii as usize + nx * jj as usize, v));
+                        }
                     }
                 }
             }
         }
+        t
     }
-    t
 }
 
-impl LinearSolver for DirectLu {
-    fn setup(&mut self, a: &Stencil9) -> Result<(), SolveError> {
-        self.lu = Some(SparseLu::factor(a.len(), &triplets(a))?);
+impl Assemble for Stencil19 {
+    fn order(&self) -> usize {
+        self.len()
+    }
+
+    fn triplets(&self) -> Vec<Triplet<usize, usize, f64>> {
+        let [nx, ny, _] = self.dims();
+        let off = self.linear_offsets();
+        let mut t = Vec::with_capacity(19 * self.len());
+        for (p, row) in self.coefs().iter().enumerate() {
+            let ins = self.inside(p % nx, (p / nx) % ny, p / (nx * ny));
+            for m in 0..19 {
+                if ins[m] && row[m] != 0.0 {
+                    t.push(Triplet::new(p, (p as isize + off[m]) as usize, row[m]));
+                }
+            }
+        }
+        t
+    }
+}
+
+/// faer sparse LU of a structured operator `S`, factored on `setup`: [`DirectLu`] for a
+/// [`Stencil9`], [`DirectLu3`] for a [`Stencil19`].
+pub struct SparseDirect<S> {
+    lu: Option<SparseLu>,
+    op: PhantomData<fn(&S)>,
+}
+
+/// faer sparse LU of a [`Stencil9`] ("direct").
+pub type DirectLu = SparseDirect<Stencil9>;
+
+/// faer sparse LU of a [`Stencil19`] ("direct" for volume blocks): exact, for tests and small
+/// blocks.
+pub type DirectLu3 = SparseDirect<Stencil19>;
+
+impl<S> Default for SparseDirect<S> {
+    fn default() -> Self {
+        SparseDirect {
+            lu: None,
+            op: PhantomData,
+        }
+    }
+}
+
+impl<S: Assemble> SparseDirect<S> {
+    /// A solver that factors on `setup`.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Factors `a` (the `setup` of both solver traits).
+    fn factor(&mut self, a: &S) -> Result<(), SolveError> {
+        self.lu = Some(SparseLu::factor(a.order(), &a.triplets())?);
         Ok(())
     }
 
-    fn solve(
-        &self,
-        b: &[f64],
-        x: &mut [f64],
-        _ctl: &SolveControl,
-    ) -> Result<SolveInfo, SolveError> {
+    /// x = A⁻¹ b for the operator of the last `setup`.
+    fn apply(&self, b: &[f64], x: &mut [f64]) -> Result<SolveInfo, SolveError> {
         self.lu.as_ref().ok_or(SolveError::NotSetUp)?.solve(b, x)
     }
-
-    fn name(&self) -> &'static str {
-        "direct-lu"
-    }
 }
+
+/// The 2D and the volume solver traits, which differ only in their stencil.
+macro_rules! direct_solver {
+    ($solver:ident, $stencil:ty) => {
+        impl $solver for SparseDirect<$stencil> {
+            fn setup(&mut self, a: &$stencil) -> Result<(), SolveError> {
+                self.factor(a)
+            }
+
+            fn solve(
+                &self,
+                b: &[f64],
+                x: &mut [f64],
+                _ctl: &SolveControl,
+            ) -> Result<SolveInfo, SolveError> {
+                self.apply(b, x)
+            }
+
+            fn name(&self) -> &'static str {
+                "direct-lu"
+            }
+        }
+    };
+}
+
+direct_solver!(LinearSolver, Stencil9);
+direct_solver!(LinearSolver3, Stencil19);
 
 #[cfg(test)]
 mod tests {

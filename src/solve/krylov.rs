@@ -1,6 +1,6 @@
 //! Bi-CGSTAB (van der Vorst 1992) over closures, right-preconditioned, for any operator and
 //! preconditioner: one cycle of the 2D multigrid ([`crate::solve::multigrid::bicgstab`]) or of the 3D
-//! one, or ILU(0) ([`crate::solve::solver3d::BiCgStabIlu`]), the Krylov half of the paper's THREED.
+//! one, or ILU(0) ([`crate::solve::ilu::BiCgStabIlu`]), the Krylov half of the paper's THREED.
 //! `residual_history` holds `‖r_k‖₂/‖r_0‖₂` after each iteration (two preconditioner
 //! applications); when the recursive residual reaches the tolerance the true residual is
 //! checked and the iteration restarts from it if it drifted.

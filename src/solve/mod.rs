@@ -2,11 +2,11 @@
 //! solver and the black-box multigrid are interchangeable.
 
 pub mod direct;
+pub mod ilu;
 pub mod krylov;
 pub mod multigrid;
 pub mod multigrid3d;
 pub mod select;
-pub mod solver3d;
 pub mod stencil19;
 pub mod stencil9;
 

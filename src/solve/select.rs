@@ -1,10 +1,10 @@
 //! The linear solvers by the names of case files and the command line: 2D ([`by_name`]) and
 //! volume blocks ([`by_name3`], [`for_block`] with "auto").
 
-use crate::solve::direct::DirectLu;
+use crate::solve::direct::{DirectLu, DirectLu3};
+use crate::solve::ilu::BiCgStabIlu;
 use crate::solve::multigrid::{MgParams, MultigridSafe};
 use crate::solve::multigrid3d::Multigrid3;
-use crate::solve::solver3d::{BiCgStabIlu, DirectLu3};
 use crate::solve::{LinearSolver, LinearSolver3};
 
 /// The linear solver called `name` in case files: "direct" (sparse LU, the reference) or
@@ -47,5 +47,32 @@ pub fn for_block(name: &str, dims: [usize; 3]) -> Result<Box<dyn LinearSolver3>,
         "auto" if dims.iter().product::<usize>() >= AUTO_MULTIGRID_NODES => by_name3("multigrid"),
         "auto" => by_name3("bicgstab"),
         _ => by_name3(name),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn auto_picks_multigrid_for_large_blocks_and_names_are_checked() {
+        assert_eq!(
+            for_block("auto", [33, 33, 33]).unwrap().name(),
+            "bicgstab-ilu0"
+        );
+        assert_eq!(for_block("auto", [65, 65, 65]).unwrap().name(), "multigrid");
+        assert_eq!(
+            for_block("direct", [65, 65, 65]).unwrap().name(),
+            "direct-lu"
+        );
+        let e = for_block("gmres", [9, 9, 9]).err().unwrap();
+        assert!(e.contains("'gmres'") && e.contains("auto"), "{e}");
+    }
+
+    #[test]
+    fn unknown_names_are_rejected() {
+        assert!(by_name3("bicgstab").is_ok());
+        assert!(by_name3("direct").is_ok());
+        assert!(matches!(by_name3("cg"), Err(e) if e.contains("bicgstab")));
     }
 }

@@ -4,56 +4,10 @@
 
 use rayon::prelude::*;
 
-use crate::quality::quality3d::{FaceQuality, QualityReport3, MAX_FIRST_FOLDED};
+use crate::quality::geom::{angle_deg as angle, cross, dot, nmax, nmin, norm, sub, V3 as V};
+use crate::quality::quality3d::{FaceQuality, QualityReport3};
+use crate::quality::stats::{lines, CellStats, Listed};
 use crate::Grid3;
-
-type V = [f64; 3];
-#[inline]
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-#[inline]
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-#[inline]
-fn cross(a: V, b: V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-#[inline]
-fn norm(a: V) -> f64 {
-    dot(a, a).sqrt()
-}
-#[inline]
-fn angle(a: V, b: V) -> f64 {
-    norm(cross(a, b)).atan2(dot(a, b)).to_degrees()
-}
-fn nmin(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b.is_nan() {
-        f64::NAN
-    } else {
-        a.min(b)
-    }
-}
-fn nmax(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b.is_nan() {
-        f64::NAN
-    } else {
-        a.max(b)
-    }
-}
-fn growth(a: f64, b: f64) -> f64 {
-    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-    if hi == 0.0 {
-        1.0
-    } else {
-        hi / lo
-    }
-}
 
 /// Per-cell measures: (min corner Jacobian, min scaled Jacobian, skewness, aspect ratio), with
 /// the Jacobians multiplied by `sign`.
@@ -193,17 +147,10 @@ fn orientation(g: &Grid3) -> f64 {
     }
 }
 
+/// The cells of one layer: [`CellStats`], and the flat-edge cells apart.
 struct Acc {
-    jmin: f64,
-    jmax: f64,
-    smin: f64,
-    skew_max: f64,
-    skew_sum: f64,
-    aspect: f64,
-    folded: usize,
-    first: Vec<[usize; 3]>,
-    flat: usize,
-    first_flat: Vec<[usize; 3]>,
+    cells: CellStats<3>,
+    flat: Listed<3>,
     /// Smallest scaled Jacobian over the cells that are not flat-edge cells.
     smin_regular: f64,
 }
@@ -211,63 +158,18 @@ struct Acc {
 impl Acc {
     fn new() -> Self {
         Acc {
-            jmin: f64::INFINITY,
-            jmax: f64::NEG_INFINITY,
-            smin: f64::INFINITY,
-            skew_max: f64::NEG_INFINITY,
-            skew_sum: 0.0,
-            aspect: f64::NEG_INFINITY,
-            folded: 0,
-            first: vec![],
-            flat: 0,
-            first_flat: vec![],
+            cells: CellStats::new(),
+            flat: Listed::new(),
             smin_regular: f64::INFINITY,
         }
     }
+
     fn merge(mut self, b: Acc) -> Acc {
-        self.jmin = nmin(self.jmin, b.jmin);
-        self.jmax = nmax(self.jmax, b.jmax);
-        self.smin = nmin(self.smin, b.smin);
-        self.skew_max = nmax(self.skew_max, b.skew_max);
-        self.skew_sum += b.skew_sum;
-        self.aspect = nmax(self.aspect, b.aspect);
-        self.folded += b.folded;
-        let room = MAX_FIRST_FOLDED - self.first.len();
-        self.first.extend(b.first.into_iter().take(room));
-        self.flat += b.flat;
-        let room = MAX_FIRST_FOLDED - self.first_flat.len();
-        self.first_flat.extend(b.first_flat.into_iter().take(room));
+        self.cells.merge(b.cells);
+        self.flat.merge(b.flat);
         self.smin_regular = nmin(self.smin_regular, b.smin_regular);
         self
     }
-}
-
-/// Growth ratios and spacing extremes along lines of direction `a` (0 = i, 1 = j, 2 = k).
-fn lines(g: &Grid3, a: usize) -> (f64, f64, f64) {
-    let d = g.dims();
-    let st = [1, d[0], d[0] * d[1]][a];
-    let x = g.coords();
-    let h = |p: usize| {
-        let v: V = std::array::from_fn(|c| x[c][p + st] - x[c][p]);
-        norm(v)
-    };
-    (0..d.iter().product::<usize>())
-        .into_par_iter()
-        .filter(|&p| [p % d[0], (p / d[0]) % d[1], p / (d[0] * d[1])][a] + 1 < d[a])
-        .map(|p| {
-            let hp = h(p);
-            let idx = [p % d[0], (p / d[0]) % d[1], p / (d[0] * d[1])][a];
-            let gr = if idx + 2 < d[a] {
-                growth(hp, h(p + st))
-            } else {
-                1.0
-            };
-            (gr, hp, hp)
-        })
-        .reduce(
-            || (1.0, f64::INFINITY, 0.0),
-            |u, v| (nmax(u.0, v.0), nmin(u.1, v.1), nmax(u.2, v.2)),
-        )
 }
 
 /// Orthogonality and first heights at face f (0 = F1 … 5 = F6).
@@ -392,25 +294,15 @@ pub fn quality3d(g: &Grid3) -> QualityReport3 {
             for j in 0..nj - 1 {
                 for i in 0..ni - 1 {
                     let [jac, s, sk, ar] = eval_cell(g, i, j, k, sign);
-                    a.jmin = nmin(a.jmin, jac);
-                    a.jmax = nmax(a.jmax, jac);
-                    a.smin = nmin(a.smin, s);
-                    a.skew_max = nmax(a.skew_max, sk);
-                    a.skew_sum += sk;
-                    a.aspect = nmax(a.aspect, ar);
+                    // The largest Jacobian is taken over the cells' smallest corner ones.
+                    a.cells.add(jac, jac, s, sk, ar);
                     if jac > 0.0 {
                         a.smin_regular = nmin(a.smin_regular, s);
                     } else if flat_edge_cell(g, i, j, k, sign) {
-                        a.flat += 1;
-                        if a.first_flat.len() < MAX_FIRST_FOLDED {
-                            a.first_flat.push([i, j, k]);
-                        }
+                        a.flat.push([i, j, k]);
                     } else {
                         a.smin_regular = nmin(a.smin_regular, s);
-                        a.folded += 1;
-                        if a.first.len() < MAX_FIRST_FOLDED {
-                            a.first.push([i, j, k]);
-                        }
+                        a.cells.folded.push([i, j, k]);
                     }
                 }
             }
@@ -419,18 +311,20 @@ pub fn quality3d(g: &Grid3) -> QualityReport3 {
         .collect::<Vec<_>>()
         .into_iter()
         .fold(Acc::new(), Acc::merge);
-    let (gi, gj, gk) = (lines(g, 0), lines(g, 1), lines(g, 2));
-    rep.jacobian_min = acc.jmin;
-    rep.jacobian_max = acc.jmax;
-    rep.scaled_jacobian_min = acc.smin;
-    rep.folded_cells = acc.folded;
-    rep.first_folded = acc.first;
-    rep.flat_edge_cells = acc.flat;
-    rep.first_flat_edge = acc.first_flat;
+    let point = |[i, j, k]: [usize; 3]| g.point(i, j, k);
+    let [gi, gj, gk] = [0, 1, 2].map(|a| lines([ni, nj, nk], a, point));
+    let c = acc.cells;
+    rep.jacobian_min = c.jmin;
+    rep.jacobian_max = c.jmax;
+    rep.scaled_jacobian_min = c.smin;
+    rep.folded_cells = c.folded.count;
+    rep.first_folded = c.folded.first;
+    rep.flat_edge_cells = acc.flat.count;
+    rep.first_flat_edge = acc.flat.first;
     rep.scaled_jacobian_min_regular = acc.smin_regular;
-    rep.skewness_max = acc.skew_max;
-    rep.skewness_mean = acc.skew_sum / cells as f64;
-    rep.aspect_ratio_max = acc.aspect;
+    rep.skewness_max = c.skew_max;
+    rep.skewness_mean = c.skew_sum / cells as f64;
+    rep.aspect_ratio_max = c.aspect_max;
     rep.growth_i_max = gi.0;
     rep.growth_j_max = gj.0;
     rep.growth_k_max = gk.0;

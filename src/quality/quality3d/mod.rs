@@ -31,24 +31,13 @@ use std::fmt;
 
 use serde::Serialize;
 
-use crate::quality::QualityReport;
+use crate::quality::display::{cell_list, first_cells, num, table_line};
+use crate::quality::{json_f64, QualityReport};
 
 pub mod metrics;
 pub use metrics::{cell_fields3d, quality3d};
 
-/// At most this many folded cells are listed.
-pub const MAX_FIRST_FOLDED: usize = 10;
-
-/// Non-finite f64 as "nan"/"inf"/"-inf" strings (JSON has no NaN).
-fn jf64<S: serde::Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-    if v.is_finite() {
-        s.serialize_f64(*v)
-    } else if v.is_nan() {
-        s.serialize_str("nan")
-    } else {
-        s.serialize_str(if *v > 0.0 { "inf" } else { "-inf" })
-    }
-}
+pub use crate::quality::MAX_FIRST_FOLDED;
 
 /// Orthogonality and first-cell heights at one face.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -58,16 +47,16 @@ pub struct FaceQuality {
     /// Face nodes measured (those off the face's rim).
     pub nodes: usize,
     /// Largest deviation from 90° of the first grid line off the face, degrees.
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub orthogonality_max_deg: f64,
     /// Mean deviation, degrees.
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub orthogonality_mean_deg: f64,
     /// Shortest first-cell height (length of the first grid line off the face).
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub first_height_min: f64,
     /// Longest first-cell height.
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub first_height_max: f64,
 }
 
@@ -81,11 +70,11 @@ pub struct QualityReport3 {
     pub cells: usize,
     /// "right-handed" or "left-handed".
     pub orientation: String,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub jacobian_min: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub jacobian_max: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub scaled_jacobian_min: f64,
     pub folded_cells: usize,
     /// Lower corner nodes (i, j, k) of the first folded cells, in index order.
@@ -96,25 +85,25 @@ pub struct QualityReport3 {
     /// Lower corner nodes of the first flat-edge cells, in index order.
     pub first_flat_edge: Vec<[usize; 3]>,
     /// Smallest scaled Jacobian over the cells that are not flat-edge cells.
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub scaled_jacobian_min_regular: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub skewness_max: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub skewness_mean: f64,
     /// One entry per face F1 … F6.
     pub faces: Vec<FaceQuality>,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub aspect_ratio_max: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub growth_i_max: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub growth_j_max: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub growth_k_max: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub min_spacing: f64,
-    #[serde(serialize_with = "jf64")]
+    #[serde(serialize_with = "json_f64::serialize")]
     pub max_spacing: f64,
 }
 
@@ -126,28 +115,12 @@ impl QualityReport3 {
 
     /// "cell (i, j, k), …" of the first folded cells.
     pub fn folded_list(&self) -> String {
-        self.first_folded
-            .iter()
-            .map(|c| format!("cell ({}, {}, {})", c[0], c[1], c[2]))
-            .collect::<Vec<_>>()
-            .join(", ")
+        cell_list(&self.first_folded)
     }
 }
 
-fn num(v: f64) -> String {
-    if v.is_nan() {
-        "-".into()
-    } else if v.is_infinite() {
-        if v > 0.0 { "inf" } else { "-inf" }.into()
-    } else if v == 0.0 {
-        "0".into()
-    } else if (1e-3..1e5).contains(&v.abs()) {
-        let digits = (3 - v.abs().log10().floor() as i32).max(0) as usize;
-        format!("{v:.digits$}")
-    } else {
-        format!("{v:.3e}")
-    }
-}
+/// Width of the metric names in the volume report.
+const NAME_WIDTH: usize = 22;
 
 impl fmt::Display for QualityReport3 {
     /// A compact table like the 2D report's, one line per face for orthogonality.
@@ -159,85 +132,50 @@ impl fmt::Display for QualityReport3 {
             self.ni, self.nj, self.nk, self.cells, self.orientation, status
         )?;
         let line = |name: &str, cols: &[(&str, f64)]| {
-            let mut l = format!("  {name:<22}");
-            for (label, v) in cols {
-                l += &format!(" {label:>4} {:>10}", num(*v));
-            }
-            l
+            let cols: Vec<(&str, String)> = cols.iter().map(|&(l, v)| (l, num(v))).collect();
+            table_line(NAME_WIDTH, name, &cols)
         };
-        writeln!(
-            f,
-            "{}",
+        let count = |name: &str, n: usize| table_line(NAME_WIDTH, name, &[("", n.to_string())]);
+        let folded = count("folded cells", self.folded_cells)
+            + &first_cells(&self.first_folded, self.folded_cells);
+        let mut lines = vec![
             line(
                 "jacobian",
-                &[("min", self.jacobian_min), ("max", self.jacobian_max)]
-            )
-        )?;
-        writeln!(
-            f,
-            "{}",
-            line("scaled jacobian", &[("min", self.scaled_jacobian_min)])
-        )?;
-        let mut folded = format!("  {:<22} {:>15}", "folded cells", self.folded_cells);
-        if !self.first_folded.is_empty() {
-            folded += "   first:";
-            for [i, j, k] in &self.first_folded {
-                folded += &format!(" ({i},{j},{k})");
-            }
-            if self.folded_cells > self.first_folded.len() {
-                folded += " …";
-            }
-        }
-        writeln!(f, "{folded}")?;
+                &[("min", self.jacobian_min), ("max", self.jacobian_max)],
+            ),
+            line("scaled jacobian", &[("min", self.scaled_jacobian_min)]),
+            folded,
+        ];
         if self.flat_edge_cells > 0 {
-            let mut flat = format!(
-                "  {:<22} {:>15}   (180° block edge, by topology; scaled jacobian min {} off \
-                 them)   first:",
-                "flat-edge cells",
-                self.flat_edge_cells,
-                num(self.scaled_jacobian_min_regular)
-            );
-            for [i, j, k] in &self.first_flat_edge {
-                flat += &format!(" ({i},{j},{k})");
-            }
-            if self.flat_edge_cells > self.first_flat_edge.len() {
-                flat += " …";
-            }
-            writeln!(f, "{flat}")?;
+            lines.push(format!(
+                "{}   (180° block edge, by topology; scaled jacobian min {} off them){}",
+                count("flat-edge cells", self.flat_edge_cells),
+                num(self.scaled_jacobian_min_regular),
+                first_cells(&self.first_flat_edge, self.flat_edge_cells)
+            ));
         }
-        writeln!(
-            f,
-            "{}",
+        lines.extend([
             line(
                 "skewness",
-                &[("max", self.skewness_max), ("mean", self.skewness_mean)]
-            )
-        )?;
-        writeln!(
-            f,
-            "{}",
-            line("aspect ratio", &[("max", self.aspect_ratio_max)])
-        )?;
-        writeln!(
-            f,
-            "{}",
+                &[("max", self.skewness_max), ("mean", self.skewness_mean)],
+            ),
+            line("aspect ratio", &[("max", self.aspect_ratio_max)]),
             line(
                 "growth ratio",
                 &[
                     ("i", self.growth_i_max),
                     ("j", self.growth_j_max),
-                    ("k", self.growth_k_max)
-                ]
-            )
-        )?;
-        writeln!(
-            f,
-            "{}",
+                    ("k", self.growth_k_max),
+                ],
+            ),
             line(
                 "spacing",
-                &[("min", self.min_spacing), ("max", self.max_spacing)]
-            )
-        )?;
+                &[("min", self.min_spacing), ("max", self.max_spacing)],
+            ),
+        ]);
+        for l in lines {
+            writeln!(f, "{l}")?;
+        }
         for q in &self.faces {
             let l = line(
                 &format!("orthogonality {} (°)", q.face),
@@ -312,15 +250,9 @@ mod tests {
     use super::*;
     use crate::Grid3;
 
-    fn box_grid(xs: &[f64], ys: &[f64], zs: &[f64]) -> Grid3 {
-        Grid3::from_fn(xs.len(), ys.len(), zs.len(), |i, j, k| {
-            [xs[i], ys[j], zs[k]]
-        })
-    }
-
     #[test]
     fn box_metrics_are_exact() {
-        let g = box_grid(&[0.0, 1.0, 3.0], &[0.0, 0.5], &[0.0, 2.0, 4.0, 8.0]);
+        let g = Grid3::rectilinear(&[0.0, 1.0, 3.0], &[0.0, 0.5], &[0.0, 2.0, 4.0, 8.0]);
         let q = quality3d(&g);
         assert_eq!(q.cells, 2 * 3);
         assert_eq!(q.folded_cells, 0);
@@ -391,7 +323,7 @@ mod tests {
     #[test]
     fn a_folded_cell_is_found_and_mirrors_are_valid() {
         let r: Vec<f64> = (0..4).map(|v| v as f64).collect();
-        let mut g = box_grid(&r, &r, &r);
+        let mut g = Grid3::rectilinear(&r, &r, &r);
         let mirrored = {
             let mut m = g.clone();
             m.coords_mut()[0].iter_mut().for_each(|v| *v = -*v);

@@ -32,10 +32,7 @@ fn explore() {
                 ..Default::default()
             }),
         ),
-        (
-            "bicgstab",
-            Box::new(crate::solve::solver3d::BiCgStabIlu::new()),
-        ),
+        ("bicgstab", Box::new(crate::solve::ilu::BiCgStabIlu::new())),
     ];
     for (name, mut solver) in runs {
         let t = std::time::Instant::now();

@@ -21,8 +21,8 @@ use crate::elliptic::picard::PicardParams;
 use crate::elliptic::poisson3d::assemble;
 use crate::elliptic::volume::grid_volume;
 use crate::grid::faces::Faces;
+use crate::solve::direct::DirectLu3;
 use crate::solve::multigrid3d::*;
-use crate::solve::solver3d::DirectLu3;
 use crate::solve::stencil19::C;
 use crate::Grid3;
 
@@ -39,7 +39,7 @@ fn poisson7(nx: usize, ny: usize, nz: usize, w: [f64; 3]) -> Stencil19 {
     a
 }
 
-/// Non-symmetric anisotropic 19-point model (as in `solver3d`), strong along axis `d`.
+/// Non-symmetric anisotropic 19-point model (as in `ilu`), strong along axis `d`.
 fn aniso(nx: usize, ny: usize, nz: usize, d: usize, eps: f64) -> Stencil19 {
     let mut a = Stencil19::zeros(nx, ny, nz);
     for (p, row) in a.coefs_mut().iter_mut().enumerate() {

@@ -1,66 +1,20 @@
-//! Linear solvers for the 19-point systems of a volume Picard step ([`Stencil19`]).
+//! Bi-CGSTAB with an ILU(0) preconditioner for the 19-point systems of a volume Picard step
+//! ([`Stencil19`]): [`BiCgStabIlu`] ("bicgstab", the default below
+//! [`crate::solve::select::AUTO_MULTIGRID_NODES`] nodes).
 //!
-//! [`LinearSolver3`] mirrors the 2D [`crate::solve::LinearSolver`]: `setup` once per
-//! operator (once per Picard step), then one `solve` per coordinate, in parallel. Two solvers:
-//! - [`BiCgStabIlu`] ("bicgstab", the default below 200 000 nodes): Bi-CGSTAB (van der Vorst
-//!   1992, the Krylov half of the paper's THREED) right-preconditioned by an incomplete LU
-//!   factorization without fill, ILU(0), in the natural (i fastest) ordering. ILU(0) of a
-//!   19-point operator is exact for purely one-dimensional coupling along any of the three
-//!   index directions (the three-point lines lie inside the pattern), so the strong wall-normal
-//!   coupling of clustered walls (aspect ratios 10³–10⁴) costs it little.
-//! - [`DirectLu3`] ("direct"): faer's sparse LU, the exact reference for tests and small
-//!   blocks (its fill grows like n^{4/3} in 3D; keep it below ~40³ nodes).
+//! Bi-CGSTAB (van der Vorst 1992, the Krylov half of the paper's THREED) is
+//! right-preconditioned by an incomplete LU factorization without fill, ILU(0), in the natural
+//! (i fastest) ordering. ILU(0) of a 19-point operator is exact for purely one-dimensional
+//! coupling along any of the three index directions (the three-point lines lie inside the
+//! pattern), so the strong wall-normal coupling of clustered walls (aspect ratios 10³–10⁴)
+//! costs it little.
 //!
-//! A third, [`crate::solve::multigrid3d::Multigrid3`] ("multigrid"), is the 3D black-box multigrid.
+//! The other volume solvers behind [`LinearSolver3`] are [`crate::solve::direct::DirectLu3`]
+//! ("direct": faer's sparse LU, the exact reference) and
+//! [`crate::solve::multigrid3d::Multigrid3`] ("multigrid", the 3D black-box multigrid).
 
-use crate::solve::direct::SparseLu;
 use crate::solve::stencil19::{Stencil19, C, OFFSETS};
 use crate::solve::{LinearSolver3, SolveControl, SolveError, SolveInfo};
-use faer::sparse::Triplet;
-
-/// faer sparse LU of a [`Stencil19`]: exact, for tests and small blocks.
-#[derive(Default)]
-pub struct DirectLu3 {
-    lu: Option<SparseLu>,
-}
-
-impl DirectLu3 {
-    /// A solver that factors on `setup`.
-    pub fn new() -> Self {
-        Self::default()
-    }
-}
-
-impl LinearSolver3 for DirectLu3 {
-    fn setup(&mut self, a: &Stencil19) -> Result<(), SolveError> {
-        let [nx, ny, _] = a.dims();
-        let off = a.linear_offsets();
-        let mut t = Vec::with_capacity(19 * a.len());
-        for (p, row) in a.coefs().iter().enumerate() {
-            let ins = a.inside(p % nx, (p / nx) % ny, p / (nx * ny));
-            for m in 0..19 {
-                if ins[m] && row[m] != 0.0 {
-                    t.push(Triplet::new(p, (p as isize + off[m]) as usize, row[m]));
-                }
-            }
-        }
-        self.lu = Some(SparseLu::factor(a.len(), &t)?);
-        Ok(())
-    }
-
-    fn solve(
-        &self,
-        b: &[f64],
-        x: &mut [f64],
-        _ctl: &SolveControl,
-    ) -> Result<SolveInfo, SolveError> {
-        self.lu.as_ref().ok_or(SolveError::NotSetUp)?.solve(b, x)
-    }
-
-    fn name(&self) -> &'static str {
-        "direct-lu"
-    }
-}
 
 /// Bi-CGSTAB right-preconditioned by ILU(0) (module docs).
 #[derive(Default)]
@@ -222,22 +176,7 @@ impl LinearSolver3 for BiCgStabIlu {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solve::select::{by_name3, for_block};
-
-    #[test]
-    fn auto_picks_multigrid_for_large_blocks_and_names_are_checked() {
-        assert_eq!(
-            for_block("auto", [33, 33, 33]).unwrap().name(),
-            "bicgstab-ilu0"
-        );
-        assert_eq!(for_block("auto", [65, 65, 65]).unwrap().name(), "multigrid");
-        assert_eq!(
-            for_block("direct", [65, 65, 65]).unwrap().name(),
-            "direct-lu"
-        );
-        let e = for_block("gmres", [9, 9, 9]).err().unwrap();
-        assert!(e.contains("'gmres'") && e.contains("auto"), "{e}");
-    }
+    use crate::solve::direct::DirectLu3;
 
     /// An anisotropic, non-symmetric 19-point operator like a clustered-wall Picard step.
     fn model(nx: usize, ny: usize, nz: usize, aniso: f64) -> Stencil19 {
@@ -296,12 +235,5 @@ mod tests {
                 assert!((u - w).abs() < 1e-9 && (v - w).abs() < 1e-11, "{u} {v} {w}");
             }
         }
-    }
-
-    #[test]
-    fn unknown_names_are_rejected() {
-        assert!(by_name3("bicgstab").is_ok());
-        assert!(by_name3("direct").is_ok());
-        assert!(matches!(by_name3("cg"), Err(e) if e.contains("bicgstab")));
     }
 }

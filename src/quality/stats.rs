@@ -1,0 +1,126 @@
+//! Pieces shared by the planar/surface report and the volume report: the running extremes of
+//! the per-cell measures, the first flagged cells, and spacings and growth ratios along grid
+//! lines, all over a grid of any dimension N (cells and nodes as [usize; N] indices).
+
+use rayon::prelude::*;
+
+use crate::quality::geom::{growth_ratio, nmax, nmin, norm, sub, V3};
+use crate::quality::MAX_FIRST_FOLDED;
+
+/// Cells counted by some test (folded, flat-edge) and the first [`MAX_FIRST_FOLDED`] of them.
+pub(super) struct Listed<const N: usize> {
+    pub count: usize,
+    pub first: Vec<[usize; N]>,
+}
+
+impl<const N: usize> Listed<N> {
+    pub fn new() -> Self {
+        Listed {
+            count: 0,
+            first: Vec::new(),
+        }
+    }
+
+    /// Counts `cell`, which comes after those counted so far in index order.
+    pub fn push(&mut self, cell: [usize; N]) {
+        self.count += 1;
+        if self.first.len() < MAX_FIRST_FOLDED {
+            self.first.push(cell);
+        }
+    }
+
+    /// Merges `b`, which covers cells after those of `self` in index order.
+    pub fn merge(&mut self, b: Self) {
+        self.count += b.count;
+        let room = MAX_FIRST_FOLDED - self.first.len();
+        self.first.extend(b.first.into_iter().take(room));
+    }
+}
+
+/// Running extremes and sums of the per-cell measures over a part of the grid, and its folded
+/// cells.
+pub(super) struct CellStats<const N: usize> {
+    pub jmin: f64,
+    pub jmax: f64,
+    pub smin: f64,
+    pub skew_max: f64,
+    pub skew_sum: f64,
+    pub aspect_max: f64,
+    pub folded: Listed<N>,
+}
+
+impl<const N: usize> CellStats<N> {
+    pub fn new() -> Self {
+        CellStats {
+            jmin: f64::INFINITY,
+            jmax: f64::NEG_INFINITY,
+            smin: f64::INFINITY,
+            skew_max: f64::NEG_INFINITY,
+            skew_sum: 0.0,
+            aspect_max: f64::NEG_INFINITY,
+            folded: Listed::new(),
+        }
+    }
+
+    /// Adds one cell's Jacobian extremes, smallest scaled Jacobian, skewness and aspect ratio.
+    pub fn add(&mut self, jmin: f64, jmax: f64, smin: f64, skew: f64, aspect: f64) {
+        self.jmin = nmin(self.jmin, jmin);
+        self.jmax = nmax(self.jmax, jmax);
+        self.smin = nmin(self.smin, smin);
+        self.skew_max = nmax(self.skew_max, skew);
+        self.skew_sum += skew;
+        self.aspect_max = nmax(self.aspect_max, aspect);
+    }
+
+    /// Merges `b`, which covers cells after those of `self` in index order.
+    pub fn merge(&mut self, b: Self) {
+        self.jmin = nmin(self.jmin, b.jmin);
+        self.jmax = nmax(self.jmax, b.jmax);
+        self.smin = nmin(self.smin, b.smin);
+        self.skew_max = nmax(self.skew_max, b.skew_max);
+        self.skew_sum += b.skew_sum;
+        self.aspect_max = nmax(self.aspect_max, b.aspect_max);
+        self.folded.merge(b.folded);
+    }
+}
+
+/// Spacings along the grid lines of axis `a` of a grid of `dims` nodes whose node n is
+/// `point(n)`: (largest growth ratio of adjacent spacings, inverted to be ≥ 1 (1 without two
+/// adjacent spacings); shortest spacing; longest spacing).
+pub(super) fn lines<const N: usize>(
+    dims: [usize; N],
+    a: usize,
+    point: impl Fn([usize; N]) -> V3 + Sync,
+) -> (f64, f64, f64) {
+    // The spacing from node n to the next along a.
+    let h = |n: [usize; N]| {
+        let mut m = n;
+        m[a] += 1;
+        norm(sub(point(m), point(n)))
+    };
+    (0..dims.iter().product::<usize>())
+        .into_par_iter()
+        .map(|mut p| -> [usize; N] {
+            std::array::from_fn(|c| {
+                let v = p % dims[c];
+                p /= dims[c];
+                v
+            })
+        })
+        .filter(|n| n[a] + 1 < dims[a])
+        .map(|n| {
+            let hn = h(n);
+            let gr = if n[a] + 2 < dims[a] {
+                let mut m = n;
+                m[a] += 1;
+                growth_ratio(hn, h(m))
+            } else {
+                1.0
+            };
+            (gr, hn, hn)
+        })
+        .reduce(
+            || (1.0, f64::INFINITY, f64::NEG_INFINITY),
+            |u, v| (nmax(u.0, v.0), nmin(u.1, v.1), nmax(u.2, v.2)),
+        )
+}
