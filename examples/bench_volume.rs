@@ -25,7 +25,7 @@ use ellipgrid::quality::quality3d::quality3d;
 use ellipgrid::solve::ilu::BiCgStabIlu;
 use ellipgrid::solve::multigrid3d::Multigrid3;
 use ellipgrid::solve::stencil19::Stencil19;
-use ellipgrid::solve::LinearSolver3;
+use ellipgrid::solve::LinearSolver;
 use ellipgrid::solve::SolveControl;
 use ellipgrid::Grid3;
 use std::time::Instant;
@@ -56,7 +56,7 @@ fn boundary(n: usize) -> Faces {
 }
 
 /// Setup and solve of the first Picard operator (coordinate x) with `solver`.
-fn first_operator(n: usize, faces: &Faces, solver: &mut dyn LinearSolver3) {
+fn first_operator(n: usize, faces: &Faces, solver: &mut dyn LinearSolver<Stencil19>) {
     let x = transfinite(faces);
     let ctrl = control_for(faces, ControlKind::Algebraic, "bench").expect("control");
     let mut a = Stencil19::zeros(n - 2, n - 2, n - 2);
@@ -91,7 +91,7 @@ fn first_operator(n: usize, faces: &Faces, solver: &mut dyn LinearSolver3) {
 /// The whole volume solve of the benchmark block with `solver`.
 /// The whole generation with the default parameters (nested iteration, inexact Picard):
 /// Picard steps per level (coarsest first), seconds, work units.
-fn whole(n: usize, faces: &Faces, solver: &mut dyn LinearSolver3) {
+fn whole(n: usize, faces: &Faces, solver: &mut dyn LinearSolver<Stencil19>) {
     let t0 = Instant::now();
     let r = grid_volume(
         faces,

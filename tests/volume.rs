@@ -469,7 +469,7 @@ struct FailsWhenSmall {
     min: usize,
 }
 
-impl ellipgrid::solve::LinearSolver3 for FailsWhenSmall {
+impl ellipgrid::solve::LinearSolver<ellipgrid::solve::stencil19::Stencil19> for FailsWhenSmall {
     fn setup(&mut self, a: &ellipgrid::solve::stencil19::Stencil19) -> Result<(), SolveError> {
         if a.len() < self.min {
             return Err(SolveError::Singular("too small".into()));

@@ -57,7 +57,8 @@ use crate::elliptic::picard::VolumeResult;
 use crate::elliptic::picard::{PicardParams, PicardStep};
 use crate::elliptic::poisson3d;
 use crate::grid::faces::{transfinite, Faces};
-use crate::solve::LinearSolver3;
+use crate::solve::stencil19::Stencil19;
+use crate::solve::LinearSolver;
 use crate::{Grid3, Result};
 use rayon::prelude::*;
 use std::borrow::Cow;
@@ -118,7 +119,7 @@ impl Problem for Volume {
 pub fn grid_volume_nested(
     faces: &Faces,
     kind: ControlKind,
-    solver: &mut dyn LinearSolver3,
+    solver: &mut dyn LinearSolver<Stencil19>,
     params: &PicardParams,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),

@@ -5,7 +5,7 @@
 //! a-posteriori estimate of its error (`error_estimate`) instead of one confirming step
 //! more. `iterate` runs the steps; the system (assembly, solver, grid) is the caller's.
 
-use crate::solve::{SolveControl, SolveError, SolveInfo};
+use crate::solve::{LinearSolver, SolveControl, SolveError, SolveInfo};
 use crate::{Error, Result};
 use rayon::prelude::*;
 
@@ -128,20 +128,48 @@ struct StepWork {
 /// ([`crate::elliptic::poisson2d`]) or the volume system [86] ([`crate::elliptic::poisson3d`]),
 /// each holding its iterate, operator, right-hand sides and linear solver.
 pub(crate) trait System {
+    /// The operator of the linear systems (`Stencil9` or `Stencil19`).
+    type Op;
     /// Assembles the operator at the current iterate and the residuals b − A x (interior
     /// numbering); returns the residual of the grid equations relative to the diameter.
     fn evaluate(&mut self) -> f64;
-    /// Sets the linear solver up for the operator, or only updates it if `small` (the last
-    /// update was below [`SMALL_CHANGE`]).
-    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError>;
-    /// Solves the corrections to `ctl` and adds them to the iterate: the solves, and the
-    /// largest correction relative to the diameter (NaN if the grid became non-finite).
-    fn correct(
-        &mut self,
-        ctl: &SolveControl,
-    ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64);
-    /// The linear solver's name for the report.
-    fn solver_name(&self) -> &'static str;
+    /// The linear solver, the operator, the residuals and the corrections.
+    fn linear(&mut self) -> Linear<'_, Self::Op>;
+    /// Adds the corrections to the iterate; returns `largest` (the largest correction)
+    /// relative to the diameter, NaN if the grid became non-finite.
+    fn apply(&mut self, largest: f64) -> f64;
+}
+
+/// The linear part of a [`System`], borrowed for one step.
+pub(crate) struct Linear<'s, A> {
+    pub solver: &'s mut dyn LinearSolver<A>,
+    pub a: &'s A,
+    pub r: &'s [Vec<f64>],
+    pub u: &'s mut [Vec<f64>],
+}
+
+impl<'s, A> Linear<'s, A> {
+    pub fn new(
+        solver: &'s mut dyn LinearSolver<A>,
+        a: &'s A,
+        r: &'s [Vec<f64>],
+        u: &'s mut [Vec<f64>],
+    ) -> Self {
+        Linear { solver, a, r, u }
+    }
+}
+
+/// Sets `solver` up for the operator `a`, or only updates it if `small`.
+fn prepare<A>(
+    solver: &mut dyn LinearSolver<A>,
+    a: &A,
+    small: bool,
+) -> std::result::Result<(), SolveError> {
+    if small {
+        solver.update(a)
+    } else {
+        solver.setup(a)
+    }
 }
 
 /// The checks of a Picard solve's input shared by 2D and 3D: the grid has at least three
@@ -175,15 +203,15 @@ pub(crate) fn check_input(
 /// Runs the Picard iteration of `sys` ([`iterate`]) and evaluates the final residual. Returns
 /// the report and the shortest time (seconds) of one evaluation (assembly + residual): the
 /// work unit of nested iteration.
-pub(crate) fn run(
-    sys: &mut dyn System,
+pub(crate) fn run<S: System>(
+    sys: &mut S,
     params: &PicardParams,
     relative_stop: f64,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<(PicardInfo, f64)> {
     let mut eval_secs = f64::INFINITY;
-    let mut evaluate = |sys: &mut dyn System| {
+    let mut evaluate = |sys: &mut S| {
         let t0 = std::time::Instant::now();
         let res = sys.evaluate();
         eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
@@ -195,22 +223,24 @@ pub(crate) fn run(
         place,
         |small, ctl| {
             let residual = evaluate(&mut *sys);
-            sys.prepare(small).map_err(|source| Error::Solve {
+            let lin = sys.linear();
+            prepare(lin.solver, lin.a, small).map_err(|source| Error::Solve {
                 place: place.to_string(),
                 source,
             })?;
-            let (solves, update) = sys.correct(ctl);
+            let lin = sys.linear();
+            let (solves, largest) = solve_corrections(&*lin.solver, lin.u, lin.r, ctl);
             Ok(StepWork {
                 residual,
                 solves,
-                update,
+                update: sys.apply(largest),
             })
         },
         progress,
     )?;
     let final_residual = evaluate(&mut *sys);
     let info = info(
-        sys.solver_name(),
+        sys.linear().solver.name(),
         params,
         history,
         converged,
@@ -308,24 +338,22 @@ pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
 }
 
 /// The corrections of one Picard step in correction form, A δ = b − A x_k from δ₀ = 0, one
-/// coordinate per rayon task with the operator's one setup (`solve(r, δ)`); returns the
+/// coordinate per rayon task with the operator's one setup of `solver`; returns the
 /// solves' results and the largest |δ|. The correction form keeps the cycles' round-off
 /// relative to δ instead of x: near convergence the residual of x_k is itself at round-off
 /// level, and a solve for x would stagnate.
-pub(crate) fn solve_corrections<F>(
+fn solve_corrections<A>(
+    solver: &dyn LinearSolver<A>,
     u: &mut [Vec<f64>],
     r: &[Vec<f64>],
-    solve: F,
-) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64)
-where
-    F: Fn(&[f64], &mut [f64]) -> std::result::Result<SolveInfo, SolveError> + Sync,
-{
+    ctl: &SolveControl,
+) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
     let infos = u
         .par_iter_mut()
         .zip(r.par_iter())
         .map(|(uc, rc)| {
             uc.fill(0.0);
-            solve(rc, uc)
+            solver.solve(rc, uc, ctl)
         })
         .collect();
     let largest = u

@@ -17,7 +17,7 @@ use crate::elliptic::picard::{self, PicardInfo, PicardParams};
 use crate::grid::boundary::Boundary2;
 use crate::grid::Grid2;
 use crate::solve::stencil9::Stencil9;
-use crate::solve::{LinearSolver, SolveControl, SolveError, SolveInfo};
+use crate::solve::LinearSolver;
 use crate::Result;
 use rayon::prelude::*;
 
@@ -245,40 +245,27 @@ struct System2<'a, const D: usize> {
 }
 
 impl<const D: usize> picard::System for System2<'_, D> {
+    type Op = Stencil9;
+
     fn evaluate(&mut self) -> f64 {
         assemble(self.x, self.ctrl, &mut self.a, &mut self.rhs);
         residual_scaled(self.x, &self.a, &self.rhs, self.diam, Some(&mut self.r))
     }
 
-    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
-        if small {
-            self.solver.update(&self.a)
-        } else {
-            self.solver.setup(&self.a)
-        }
+    fn linear(&mut self) -> picard::Linear<'_, Stencil9> {
+        picard::Linear::new(&mut *self.solver, &self.a, &self.r, &mut self.u)
     }
 
-    fn correct(
-        &mut self,
-        ctl: &SolveControl,
-    ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
-        let solver: &dyn LinearSolver = self.solver;
-        let (infos, upd) =
-            picard::solve_corrections(&mut self.u, &self.r, |rc, uc| solver.solve(rc, uc, ctl));
+    fn apply(&mut self, largest: f64) -> f64 {
         let (ni, nx) = (self.x.ni(), self.x.ni() - 2);
         for (c, uc) in self.u.iter().enumerate() {
             add_interior(uc, ni, nx, self.x.coord_mut(c));
         }
-        let update = if self.x.all_finite() {
-            upd / self.diam
+        if self.x.all_finite() {
+            largest / self.diam
         } else {
             f64::NAN
-        };
-        (infos, update)
-    }
-
-    fn solver_name(&self) -> &'static str {
-        self.solver.name()
+        }
     }
 }
 

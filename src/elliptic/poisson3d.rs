@@ -22,7 +22,7 @@ use crate::algebraic::control3d::Control3;
 use crate::elliptic::picard;
 use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep};
 use crate::solve::stencil19::{Stencil19, C, OFFSETS};
-use crate::solve::{LinearSolver3, SolveControl, SolveError, SolveInfo};
+use crate::solve::LinearSolver;
 use crate::{Grid3, Result};
 use rayon::prelude::*;
 
@@ -205,7 +205,7 @@ fn add_interior(x: &mut Grid3, c: usize, inner: &[f64]) {
 pub fn solve(
     x: &mut Grid3,
     ctrl: &Control3,
-    solver: &mut dyn LinearSolver3,
+    solver: &mut dyn LinearSolver<Stencil19>,
     params: &PicardParams,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
@@ -221,7 +221,7 @@ pub fn solve(
 pub(crate) fn solve_timed(
     x: &mut Grid3,
     ctrl: &Control3,
-    solver: &mut dyn LinearSolver3,
+    solver: &mut dyn LinearSolver<Stencil19>,
     params: &PicardParams,
     relative_stop: f64,
     place: &str,
@@ -257,7 +257,7 @@ pub(crate) fn solve_timed(
 struct System3<'a> {
     x: &'a mut Grid3,
     ctrl: &'a Control3,
-    solver: &'a mut dyn LinearSolver3,
+    solver: &'a mut dyn LinearSolver<Stencil19>,
     a: Stencil19,
     rhs: [Vec<f64>; 3],
     r: [Vec<f64>; 3],
@@ -267,6 +267,8 @@ struct System3<'a> {
 }
 
 impl picard::System for System3<'_> {
+    type Op = Stencil19;
+
     fn evaluate(&mut self) -> f64 {
         assemble(self.x, self.ctrl, &mut self.a, &mut self.rhs);
         residual_into(
@@ -279,29 +281,15 @@ impl picard::System for System3<'_> {
         )
     }
 
-    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
-        if small {
-            self.solver.update(&self.a)
-        } else {
-            self.solver.setup(&self.a)
-        }
+    fn linear(&mut self) -> picard::Linear<'_, Stencil19> {
+        picard::Linear::new(&mut *self.solver, &self.a, &self.r, &mut self.u)
     }
 
-    fn correct(
-        &mut self,
-        ctl: &SolveControl,
-    ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
-        let solver: &dyn LinearSolver3 = self.solver;
-        let (infos, upd) =
-            picard::solve_corrections(&mut self.u, &self.r, |rc, uc| solver.solve(rc, uc, ctl));
+    fn apply(&mut self, largest: f64) -> f64 {
         for (c, uc) in self.u.iter().enumerate() {
             add_interior(self.x, c, uc);
         }
-        (infos, upd / self.diam)
-    }
-
-    fn solver_name(&self) -> &'static str {
-        self.solver.name()
+        largest / self.diam
     }
 }
 

@@ -17,6 +17,7 @@
 //!
 //! The entry point is [`grid_volume`].
 
+use crate::solve::stencil19::Stencil19;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::algebraic::control3d::control_for;
@@ -24,7 +25,7 @@ use crate::algebraic::ControlKind;
 use crate::elliptic::picard::{PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::{nested3d, poisson3d};
 use crate::grid::faces::{transfinite, Faces};
-use crate::solve::LinearSolver3;
+use crate::solve::LinearSolver;
 use crate::{Grid3, Result};
 
 static PROGRESS: AtomicBool = AtomicBool::new(false);
@@ -52,7 +53,7 @@ pub fn grid_volume(
     faces: &Faces,
     start: Option<Grid3>,
     kind: ControlKind,
-    solver: &mut dyn LinearSolver3,
+    solver: &mut dyn LinearSolver<Stencil19>,
     params: &PicardParams,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
@@ -98,7 +99,7 @@ mod tests {
         let exact = Grid3::rectilinear(&xs, &ys, &zs);
         let faces = Faces::from_grid(&exact);
         for solver in [
-            &mut DirectLu3::new() as &mut dyn LinearSolver3,
+            &mut DirectLu3::new() as &mut dyn LinearSolver<Stencil19>,
             &mut BiCgStabIlu::new(),
         ] {
             let r = grid_volume(

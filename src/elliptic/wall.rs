@@ -37,7 +37,8 @@ use crate::elliptic::picard::VolumeResult;
 use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep};
 use crate::elliptic::poisson3d;
 use crate::grid::faces::{block_node, face_dims, normal, step_in, tangents, Faces, FACE_NAMES};
-use crate::solve::LinearSolver3;
+use crate::solve::stencil19::Stencil19;
+use crate::solve::LinearSolver;
 use crate::{Error, Grid2, Grid3, Result};
 
 use crate::elliptic::wall_normal::{self, fade_weight};
@@ -382,7 +383,7 @@ fn remap_volume(
 pub fn grid_volume_wall(
     faces: &Faces,
     w: usize,
-    solver: &mut dyn LinearSolver3,
+    solver: &mut dyn LinearSolver<Stencil19>,
     params: &PicardParams,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
@@ -400,7 +401,7 @@ pub fn grid_volume_wall_with(
     faces: &Faces,
     w: usize,
     opts: WallOptions,
-    solver: &mut dyn LinearSolver3,
+    solver: &mut dyn LinearSolver<Stencil19>,
     params: &PicardParams,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),

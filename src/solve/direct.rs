@@ -10,7 +10,7 @@ use std::marker::PhantomData;
 
 use crate::solve::stencil19::Stencil19;
 use crate::solve::stencil9::Stencil9;
-use crate::solve::{LinearSolver, LinearSolver3, SolveControl, SolveError, SolveInfo};
+use crate::solve::{LinearSolver, SolveControl, SolveError, SolveInfo};
 use faer::linalg::solvers::Solve;
 use faer::sparse::{linalg::solvers::Lu, SparseColMat, Triplet};
 
@@ -138,7 +138,7 @@ impl<S: Assemble> SparseDirect<S> {
         Self::default()
     }
 
-    /// Factors `a` (the `setup` of both solver traits).
+    /// Factors `a` (the solver's `setup`).
     fn factor(&mut self, a: &S) -> Result<(), SolveError> {
         self.lu = Some(SparseLu::factor(a.order(), &a.triplets())?);
         Ok(())
@@ -150,32 +150,24 @@ impl<S: Assemble> SparseDirect<S> {
     }
 }
 
-/// The 2D and the volume solver traits, which differ only in their stencil.
-macro_rules! direct_solver {
-    ($solver:ident, $stencil:ty) => {
-        impl $solver for SparseDirect<$stencil> {
-            fn setup(&mut self, a: &$stencil) -> Result<(), SolveError> {
-                self.factor(a)
-            }
+impl<S: Assemble + Send + Sync> LinearSolver<S> for SparseDirect<S> {
+    fn setup(&mut self, a: &S) -> Result<(), SolveError> {
+        self.factor(a)
+    }
 
-            fn solve(
-                &self,
-                b: &[f64],
-                x: &mut [f64],
-                _ctl: &SolveControl,
-            ) -> Result<SolveInfo, SolveError> {
-                self.apply(b, x)
-            }
+    fn solve(
+        &self,
+        b: &[f64],
+        x: &mut [f64],
+        _ctl: &SolveControl,
+    ) -> Result<SolveInfo, SolveError> {
+        self.apply(b, x)
+    }
 
-            fn name(&self) -> &'static str {
-                "direct-lu"
-            }
-        }
-    };
+    fn name(&self) -> &'static str {
+        "direct-lu"
+    }
 }
-
-direct_solver!(LinearSolver, Stencil9);
-direct_solver!(LinearSolver3, Stencil19);
 
 #[cfg(test)]
 mod tests {

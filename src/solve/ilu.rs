@@ -9,12 +9,12 @@
 //! pattern), so the strong wall-normal coupling of clustered walls (aspect ratios 10³–10⁴)
 //! costs it little.
 //!
-//! The other volume solvers behind [`LinearSolver3`] are [`crate::solve::direct::DirectLu3`]
+//! The other volume solvers behind [`LinearSolver`] are [`crate::solve::direct::DirectLu3`]
 //! ("direct": faer's sparse LU, the exact reference) and
 //! [`crate::solve::multigrid3d::Multigrid3`] ("multigrid", the 3D black-box multigrid).
 
 use crate::solve::stencil19::{Stencil19, C, OFFSETS};
-use crate::solve::{LinearSolver3, SolveControl, SolveError, SolveInfo};
+use crate::solve::{LinearSolver, SolveControl, SolveError, SolveInfo};
 
 /// Bi-CGSTAB right-preconditioned by ILU(0) (module docs).
 #[derive(Default)]
@@ -120,7 +120,7 @@ impl BiCgStabIlu {
     }
 }
 
-impl LinearSolver3 for BiCgStabIlu {
+impl LinearSolver<Stencil19> for BiCgStabIlu {
     fn setup(&mut self, a: &Stencil19) -> Result<(), SolveError> {
         let [nx, ny, _] = a.dims();
         let off = a.linear_offsets();

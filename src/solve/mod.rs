@@ -10,7 +10,6 @@ pub mod select;
 pub mod stencil19;
 pub mod stencil9;
 
-use crate::solve::stencil19::Stencil19;
 use crate::solve::stencil9::Stencil9;
 
 /// Relative residual beyond which an iteration (cycles or Bi-CGSTAB) counts as diverged.
@@ -98,13 +97,14 @@ pub enum SolveError {
     NotSetUp,
 }
 
-/// A solver for nine-point structured systems `A x = b`.
+/// A solver for structured systems `A x = b` with the operator `A`: nine-point
+/// ([`Stencil9`], 2D blocks, the default) or 19-point ([`Stencil19`](crate::solve::stencil19::Stencil19), volume blocks).
 ///
 /// `setup` is called once per operator (once per Picard step); several right-hand sides (the
 /// coordinates) then share it and may be solved in parallel through `solve(&self, ..)`.
-pub trait LinearSolver: Send + Sync {
+pub trait LinearSolver<A = Stencil9>: Send + Sync {
     /// Prepares the solver for operator `a` (factorization, multigrid hierarchy).
-    fn setup(&mut self, a: &Stencil9) -> Result<(), SolveError>;
+    fn setup(&mut self, a: &A) -> Result<(), SolveError>;
 
     /// Solves `A x = b` for the operator of the last `setup`; `x` holds the initial guess.
     fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError>;
@@ -113,32 +113,10 @@ pub trait LinearSolver: Send + Sync {
     /// later step of a converging Picard iteration). Iterative solvers may keep parts of the
     /// last setup (multigrid: its coarse levels) as long as `solve` still solves `A x = b`
     /// for this `a`. Default: a full `setup`.
-    fn update(&mut self, a: &Stencil9) -> Result<(), SolveError> {
+    fn update(&mut self, a: &A) -> Result<(), SolveError> {
         self.setup(a)
     }
 
     /// A short name for reports ("direct-lu", "multigrid").
-    fn name(&self) -> &'static str;
-}
-
-/// A solver for 19-point structured systems `A x = b`.
-///
-/// `setup` is called once per operator; the coordinates then share it and may be solved in
-/// parallel through `solve(&self, ..)`.
-pub trait LinearSolver3: Send + Sync {
-    /// Prepares the solver for operator `a` (factorization, preconditioner, hierarchy).
-    fn setup(&mut self, a: &Stencil19) -> Result<(), SolveError>;
-
-    /// Solves `A x = b` for the operator of the last `setup`; `x` holds the initial guess.
-    fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError>;
-
-    /// Prepares the solver for `a`, a small change of the operator of the last `setup` (a
-    /// later step of a converging Picard iteration); see
-    /// [`LinearSolver::update`]. Default: a full `setup`.
-    fn update(&mut self, a: &Stencil19) -> Result<(), SolveError> {
-        self.setup(a)
-    }
-
-    /// A short name for reports ("bicgstab-ilu0", "direct-lu").
     fn name(&self) -> &'static str;
 }

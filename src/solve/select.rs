@@ -5,7 +5,8 @@ use crate::solve::direct::{DirectLu, DirectLu3};
 use crate::solve::ilu::BiCgStabIlu;
 use crate::solve::multigrid::{MgParams, MultigridSafe};
 use crate::solve::multigrid3d::Multigrid3;
-use crate::solve::{LinearSolver, LinearSolver3};
+use crate::solve::stencil19::Stencil19;
+use crate::solve::LinearSolver;
 
 /// The linear solver called `name` in case files: "direct" (sparse LU, the reference) or
 /// "multigrid" ([`MultigridSafe`] with the default [`MgParams`]: F(1,1) cycles with
@@ -22,7 +23,7 @@ pub fn by_name(name: &str) -> Result<Box<dyn LinearSolver>, String> {
 
 /// The volume solver called `name` in case files and on the command line: "bicgstab"
 /// (default), "multigrid" ([`crate::solve::multigrid3d::Multigrid3`], V(1,1) cycles) or "direct".
-pub fn by_name3(name: &str) -> Result<Box<dyn LinearSolver3>, String> {
+pub fn by_name3(name: &str) -> Result<Box<dyn LinearSolver<Stencil19>>, String> {
     match name {
         "bicgstab" | "iterative" => Ok(Box::new(BiCgStabIlu::new())),
         "direct" => Ok(Box::new(DirectLu3::new())),
@@ -42,7 +43,7 @@ pub const AUTO_MULTIGRID_NODES: usize = 200_000;
 
 /// The solver called `name` for a block of `dims` nodes: as [`by_name3`], plus "auto" —
 /// "multigrid" from [`AUTO_MULTIGRID_NODES`] nodes, else "bicgstab".
-pub fn for_block(name: &str, dims: [usize; 3]) -> Result<Box<dyn LinearSolver3>, String> {
+pub fn for_block(name: &str, dims: [usize; 3]) -> Result<Box<dyn LinearSolver<Stencil19>>, String> {
     match name {
         "auto" if dims.iter().product::<usize>() >= AUTO_MULTIGRID_NODES => by_name3("multigrid"),
         "auto" => by_name3("bicgstab"),

@@ -7,6 +7,7 @@ use crate::elliptic::volume::grid_volume;
 use crate::grid::faces::Faces;
 use crate::solve::multigrid3d::tests::picard_operator;
 use crate::solve::multigrid3d::*;
+use crate::solve::stencil19::Stencil19;
 use crate::Grid3;
 
 /// Whole `grid_volume` on the benchmark block at 49³ with the smoother and cycle variants
@@ -15,7 +16,7 @@ use crate::Grid3;
 #[ignore]
 fn explore() {
     let faces = Faces::from_grid(&bench_block(49));
-    let variant = |p: Mg3Params| Box::new(Multigrid3::new(p)) as Box<dyn LinearSolver3>;
+    let variant = |p: Mg3Params| Box::new(Multigrid3::new(p)) as Box<dyn LinearSolver<Stencil19>>;
     let runs = [
         ("V(1,1) planes", variant(Mg3Params::default())),
         (

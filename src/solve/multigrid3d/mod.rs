@@ -59,7 +59,7 @@ mod transfer;
 
 use crate::solve::multigrid::{use_par, Pool, SharedPtr};
 use crate::solve::stencil19::Stencil19;
-use crate::solve::LinearSolver3;
+use crate::solve::LinearSolver;
 use crate::solve::{SolveControl, SolveError, SolveInfo};
 use coarse::CoarseLu;
 use cycle::{from_padded, solve_cycles, to_padded, Hierarchy, Workspace};
@@ -233,7 +233,7 @@ impl Multigrid3 {
             .as_ref()
             .is_some_and(|h| h.levels[0].dims == a.dims());
         if !fits {
-            return LinearSolver3::setup(self, a);
+            return LinearSolver::<Stencil19>::setup(self, a);
         }
         let smoother = self.params.smoother;
         let h = self.h.as_mut().expect("hierarchy checked");
@@ -257,7 +257,7 @@ impl Multigrid3 {
     }
 }
 
-impl LinearSolver3 for Multigrid3 {
+impl LinearSolver<Stencil19> for Multigrid3 {
     fn update(&mut self, a: &Stencil19) -> Result<(), SolveError> {
         Multigrid3::update(self, a)
     }

@@ -23,6 +23,7 @@ use crate::elliptic::volume::grid_volume;
 use crate::grid::faces::Faces;
 use crate::solve::direct::DirectLu3;
 use crate::solve::multigrid3d::*;
+use crate::solve::stencil19::Stencil19;
 use crate::solve::stencil19::C;
 use crate::Grid3;
 
@@ -315,7 +316,7 @@ fn grid_volume_equals_direct_lu() {
     };
     let mut grids = Vec::new();
     for solver in [
-        &mut DirectLu3::new() as &mut dyn LinearSolver3,
+        &mut DirectLu3::new() as &mut dyn LinearSolver<Stencil19>,
         &mut Multigrid3::default(),
     ] {
         let r = grid_volume(
