@@ -9,16 +9,24 @@ use crate::solve::multigrid::use_par;
 use crate::solve::{SolveControl, SolveError, SolveInfo};
 use rayon::prelude::*;
 
-/// Σ a_i b_i, in parallel chunks when large.
+/// Σ a_i b_i over fixed chunks of 8192 terms, the chunks' sums added in chunk order, in
+/// parallel when large: the same bits whatever the thread count.
 pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let chunk = |(a, b): (&[f64], &[f64])| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     if use_par(a.len()) {
-        a.par_chunks(8192)
-            .zip(b.par_chunks(8192))
-            .map(|(a, b)| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>())
-            .sum()
+        in_order(a.par_chunks(8192).zip(b.par_chunks(8192)).map(chunk))
     } else {
-        a.iter().zip(b).map(|(x, y)| x * y).sum()
+        a.chunks(8192).zip(b.chunks(8192)).map(chunk).sum()
     }
+}
+
+/// The sum of a parallel iterator's values in their order (as the sequential `sum` adds
+/// them), not in rayon's thread-dependent reduction tree: outputs stay bit-identical across
+/// runs and thread counts. For the few values of chunked reductions.
+pub(crate) fn in_order<T: Send + std::iter::Sum<T>>(
+    values: impl IndexedParallelIterator<Item = T>,
+) -> T {
+    values.collect::<Vec<T>>().into_iter().sum()
 }
 
 fn update(out: &mut [f64], f: impl Fn(usize, &mut f64) + Sync + Send) {

@@ -16,6 +16,7 @@
 //! The operator's couplings that point outside the grid are zero, so the values read there
 //! (padding, or the wrapped-around end of the neighbouring row) never matter.
 
+use crate::solve::krylov::in_order;
 use crate::solve::multigrid::{use_par, SharedPtr};
 use crate::solve::SolveError;
 use rayon::prelude::*;
@@ -147,11 +148,12 @@ fn for_blocks<T: std::iter::Sum<T> + Send>(
         f(i0, (i0 + YLineOp::W).min(nx), op, cp)
     };
     if use_par(nx * ny) {
-        op.par_chunks(chunk)
-            .zip(cp.par_chunks(chunk))
-            .enumerate()
-            .map(g)
-            .sum()
+        in_order(
+            op.par_chunks(chunk)
+                .zip(cp.par_chunks(chunk))
+                .enumerate()
+                .map(g),
+        )
     } else {
         op.chunks(chunk)
             .zip(cp.chunks(chunk))
@@ -448,7 +450,7 @@ fn for_rows(
     };
     let chunk = rows_per_task * nx;
     if use_par(n) {
-        rr.par_chunks_mut(chunk).enumerate().map(work).sum()
+        in_order(rr.par_chunks_mut(chunk).enumerate().map(work))
     } else {
         rr.chunks_mut(chunk).enumerate().map(work).sum()
     }

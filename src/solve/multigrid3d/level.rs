@@ -13,6 +13,7 @@
 //! lines are coloured by the parities of their two other indices (4 colours); the lines of
 //! one colour are independent and run in parallel.
 
+use crate::solve::krylov::in_order;
 use crate::solve::multigrid3d::{use_par, SharedPtr};
 use crate::solve::stencil19::{Stencil19, OFFSETS};
 use crate::solve::SolveError;
@@ -284,10 +285,11 @@ impl Level {
             (&mut out[..], nx * ny)
         };
         if use_par(self.n()) {
-            body.par_chunks_mut(chunk)
-                .enumerate()
-                .map(|(k, rp)| plane(k, rp))
-                .sum()
+            in_order(
+                body.par_chunks_mut(chunk)
+                    .enumerate()
+                    .map(|(k, rp)| plane(k, rp)),
+            )
         } else {
             body.chunks_mut(chunk)
                 .enumerate()
