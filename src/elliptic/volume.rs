@@ -13,7 +13,6 @@
 //! | linear solvers (Bi-CGSTAB/ILU(0), faer LU, multigrid) | [`crate::solve::ilu`], [`crate::solve::direct`], [`crate::solve::multigrid3d`] |
 //! | quality report | [`crate::quality::quality3d`] |
 //! | prescribed first-cell heights at a wall face | [`crate::elliptic::wall`] |
-//! | case-file volume blocks; runs and smoothing | [`crate::case::volume`]; [`crate::job::volume`] |
 //!
 //! The entry point is [`grid_volume`].
 
