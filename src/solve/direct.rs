@@ -14,6 +14,16 @@ use crate::solve::{LinearSolver, SolveControl, SolveError, SolveInfo};
 use faer::linalg::solvers::Solve;
 use faer::sparse::{linalg::solvers::Lu, SparseColMat, Triplet};
 
+/// faer splits its factorization and triangular solves into as many tasks as its global
+/// parallelism says; by default that is rayon's thread count, and the factors' last bits then
+/// follow `RAYON_NUM_THREADS`. A fixed two-way split (run one after the other on one thread)
+/// keeps the direct solver's results the same whatever the thread count (faer serves only this
+/// solver in ellipgrid).
+fn fixed_partition() {
+    static SET: std::sync::Once = std::sync::Once::new();
+    SET.call_once(|| faer::set_global_parallelism(faer::Par::rayon(2)));
+}
+
 /// A factored sparse matrix: faer's LU, shared by the 2D and 3D direct solvers.
 pub struct SparseLu {
     lu: Lu<usize, f64>,
@@ -23,6 +33,7 @@ pub struct SparseLu {
 impl SparseLu {
     /// Factors the n × n matrix given as triplets (row, column, value).
     pub fn factor(n: usize, t: &[Triplet<usize, usize, f64>]) -> Result<Self, SolveError> {
+        fixed_partition();
         let m = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, t)
             .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
         let lu = m
@@ -33,6 +44,7 @@ impl SparseLu {
 
     /// x = A⁻¹ b.
     pub fn solve(&self, b: &[f64], x: &mut [f64]) -> Result<SolveInfo, SolveError> {
+        fixed_partition();
         assert_eq!(b.len(), self.n);
         x.copy_from_slice(b);
         self.lu
