@@ -16,11 +16,12 @@
 #[path = "common/dump.rs"]
 mod dump;
 use ellipgrid::algebraic::control3d::control_for;
+use ellipgrid::algebraic::transfinite3d::transfinite;
 use ellipgrid::algebraic::ControlKind;
 use ellipgrid::elliptic::picard::PicardParams;
 use ellipgrid::elliptic::poisson3d::{assemble, gather};
 use ellipgrid::elliptic::volume::grid_volume;
-use ellipgrid::grid::faces::{transfinite, Faces};
+use ellipgrid::grid::faces::Faces;
 use ellipgrid::quality::quality3d::quality3d;
 use ellipgrid::solve::ilu::BiCgStabIlu;
 use ellipgrid::solve::multigrid3d::Multigrid3;

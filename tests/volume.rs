@@ -3,12 +3,13 @@
 
 mod common;
 use common::*;
+use ellipgrid::algebraic::transfinite3d::transfinite;
 use ellipgrid::algebraic::ControlKind;
 use ellipgrid::case::volume::volume_faces;
 use ellipgrid::case::LoadedCase;
 use ellipgrid::elliptic::picard::PicardParams;
 use ellipgrid::elliptic::volume::grid_volume;
-use ellipgrid::grid::faces::{transfinite, Faces};
+use ellipgrid::grid::faces::Faces;
 use ellipgrid::io::plot3d::{read_plot3d, write_plot3d, Plot3dFormat};
 use ellipgrid::io::Block;
 use ellipgrid::solve::ilu::BiCgStabIlu;

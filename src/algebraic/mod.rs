@@ -4,6 +4,7 @@
 //! |---|---|---|
 //! | straight-line transformation (2D), Lagrange transfinite start | [5, 6] [39, 40] | [`transform`] |
 //! | bilinear transformation (3D) | [70–72] [90–92] | [`bilinear3d`] |
+//! | transfinite start of a volume block | — | [`transfinite3d`] |
 //! | Hermite-blended transformation (orthogonality) | [47–49] | [`blend`] |
 //! | control functions P11, P12, P22 | [19, 20] | [`control2d`] |
 //! | the 18 control functions of a volume | [83, 84] | [`control3d`] |
@@ -13,6 +14,7 @@ pub mod blend;
 pub mod control2d;
 pub mod control3d;
 pub mod coons;
+pub mod transfinite3d;
 pub mod transform;
 
 /// Which control functions drive the grid system.

@@ -49,6 +49,7 @@
 
 use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3};
 use crate::algebraic::control3d::Control3;
+use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::nested::{
     mid_weights, run, sizes, zip_coords, LevelGrid, LevelInfo, NestedInfo, Problem,
@@ -56,7 +57,7 @@ use crate::elliptic::nested::{
 use crate::elliptic::picard::VolumeResult;
 use crate::elliptic::picard::{PicardParams, PicardStep};
 use crate::elliptic::poisson3d;
-use crate::grid::faces::{transfinite, Faces};
+use crate::grid::faces::Faces;
 use crate::solve::stencil19::Stencil19;
 use crate::solve::LinearSolver;
 use crate::{Grid3, Result};

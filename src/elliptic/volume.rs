@@ -4,7 +4,7 @@
 //!
 //! | stage | module |
 //! |---|---|
-//! | faces, edges, transfinite start | [`crate::grid::faces`] |
+//! | faces, edges; transfinite start | [`crate::grid::faces`]; [`crate::algebraic::transfinite3d`] |
 //! | edge functions, bilinear transformation [70–72] | [`crate::algebraic::bilinear3d`] |
 //! | control functions [83, 84] | [`crate::algebraic::control3d`] |
 //! | 19-point operator | [`crate::solve::stencil19`] |
@@ -20,10 +20,11 @@ use crate::solve::stencil19::Stencil19;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::algebraic::control3d::control_for;
+use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::picard::{PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::{nested3d, poisson3d};
-use crate::grid::faces::{transfinite, Faces};
+use crate::grid::faces::Faces;
 use crate::solve::LinearSolver;
 use crate::{Grid3, Result};
 

@@ -408,7 +408,7 @@ pub fn grid_volume_wall_with(
 ) -> Result<VolumeResult> {
     let targets = WallTargets::new(faces, w, place)?;
     let mut pg = bilinear(&EdgeFunctions3::arclength(faces), place)?;
-    let mut x = crate::grid::faces::transfinite(faces);
+    let mut x = crate::algebraic::transfinite3d::transfinite(faces);
     faces.apply_to(&mut x);
     let mut info: Option<PicardInfo> = None;
     let mut goal = Vec::new();

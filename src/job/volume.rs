@@ -1,6 +1,7 @@
 //! Runs of volume blocks: generation of a case's `[[volume]]` (with its wall spacing, if any),
 //! the transfinite start grid, and the regridding of volume blocks of existing grids.
 
+use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::case::volume::{volume_faces, volume_name, volume_place, wall_face};
 use crate::case::LoadedCase;
@@ -8,7 +9,7 @@ use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::volume::{grid_volume, progress_enabled};
 use crate::elliptic::wall::{check_kind, grid_volume_wall_with, wall_targets, WallOptions};
 use crate::elliptic::wall_normal::{wall_figure, WallFigure};
-use crate::grid::faces::{transfinite, Faces};
+use crate::grid::faces::Faces;
 use crate::io::Block;
 use crate::quality::quality3d::{quality3d, QualityReport3};
 use crate::solve::select::for_block;
