@@ -44,8 +44,8 @@ fn boundary(file: &str, n: usize, edit: impl Fn(String) -> String) -> Boundary2<
         .join(file);
     let text = edit(std::fs::read_to_string(&path).expect("read case"));
     let mut case = LoadedCase::parse(&text, &path).expect("parse case");
-    case.case.blocks[0].ni = n;
-    case.case.blocks[0].nj = n;
+    case.case.blocks[0].ni = Some(n);
+    case.case.blocks[0].nj = Some(n);
     case.planar_boundary(0).expect("boundary")
 }
 

@@ -17,8 +17,8 @@ fn load(path: &str) -> LoadedCase {
 }
 
 fn with_size(mut case: LoadedCase, ni: usize, nj: usize) -> LoadedCase {
-    case.case.blocks[0].ni = ni;
-    case.case.blocks[0].nj = nj;
+    case.case.blocks[0].ni = Some(ni);
+    case.case.blocks[0].nj = Some(nj);
     case
 }
 

@@ -24,8 +24,8 @@ fn boundary(file: &str, n: usize, m: usize, edit: impl Fn(String) -> String) -> 
         .join(file);
     let text = edit(std::fs::read_to_string(&path).unwrap());
     let mut case = LoadedCase::parse(&text, &path).unwrap();
-    case.case.blocks[0].ni = n;
-    case.case.blocks[0].nj = m;
+    case.case.blocks[0].ni = Some(n);
+    case.case.blocks[0].nj = Some(m);
     case.planar_boundary(0).unwrap()
 }
 

@@ -214,8 +214,8 @@ fn section_4_and_section_2_give_the_same_planar_grid() {
     for n in [17, 33, 65, 129] {
         let (g4, _) = grid(&dom, n);
         let mut c = case.clone();
-        c.case.blocks[0].ni = n;
-        c.case.blocks[0].nj = n;
+        c.case.blocks[0].ni = Some(n);
+        c.case.blocks[0].nj = Some(n);
         let b = c.planar_boundary(0).unwrap();
         let g2 = grid_block(
             &b,
@@ -282,11 +282,9 @@ fn wing_pylon_grid_is_fold_free_and_follows_the_boundary_not_the_net() {
             r.grid.nj()
         };
         // the same boundary nodes: distribute by the case's spacings on the fine net
-        let spec = match e {
-            Edge::E1 => &case.case.blocks[0].e1,
-            Edge::E2 => &case.case.blocks[0].e2,
-            Edge::E3 => &case.case.blocks[0].e3,
-            Edge::E4 => &case.case.blocks[0].e4,
+        let Some(ellipgrid::case::SideSpec::Edge(spec)) = case.case.blocks[0].sides()[e.index()]
+        else {
+            panic!("an inline edge table")
         };
         let len = ellipgrid::surface::pipeline::edge_length(&fine, e);
         spec.distribution.sample(n, len, "wp").unwrap()

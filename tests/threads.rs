@@ -92,8 +92,8 @@ fn case_grids_are_bit_identical_on_1_and_2_threads() {
             .join(file);
         let mut case = LoadedCase::read(&path).unwrap();
         if let Some(n) = size {
-            case.case.blocks[0].ni = n;
-            case.case.blocks[0].nj = n;
+            case.case.blocks[0].ni = Some(n);
+            case.case.blocks[0].nj = Some(n);
         }
         let run = || {
             let g = ellipgrid::job::generate(&case, |_| {}).unwrap();

@@ -11,18 +11,25 @@ use ellipgrid_geometry::{self as geo, Curve, Vec3};
 
 pub mod spec;
 pub mod surface;
+pub mod topology;
 pub mod volume;
+use crate::grid::topology::Topology;
 pub use spec::{
-    BlockKind, BlockSpec, Case, CurveSpec, DistributionSpec, EdgeSpec, OutputSpec, SolverSpec,
-    SurfaceSpec,
+    BlockKind, BlockSpec, Case, CurveSpec, DistributionSpec, EdgeSpec, OutputSpec, SideSpec,
+    SolverSpec, SurfaceSpec, TopoEdgeSpec, VertexSpec,
 };
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 /// A case file read from disk, with its folder for relative input paths.
 #[derive(Clone, Debug)]
 pub struct LoadedCase {
     pub path: PathBuf,
     pub case: Case,
+    /// The multi-block topology (cases with `[[edge]]` tables).
+    pub topology: Option<Topology>,
+    /// The nodes of the topology's edges, computed once.
+    nodes: OnceLock<Vec<Vec<Vec3>>>,
 }
 
 impl LoadedCase {
@@ -42,9 +49,34 @@ impl LoadedCase {
                 "the case defines no [[block]] or [[volume]]",
             ));
         }
+        let place = path.display().to_string();
+        let topology = topology::build(&case, &place)?;
+        if topology.is_none() {
+            for (k, b) in case.blocks.iter().enumerate() {
+                let name = b.name.clone().unwrap_or_else(|| format!("block{}", k + 1));
+                let at = format!("{place}: block '{name}'");
+                if b.ni.is_none() || b.nj.is_none() {
+                    return Err(Error::input(at, "the block needs ni and nj"));
+                }
+                for (e, side) in Edge::ALL.into_iter().zip(b.sides()) {
+                    match side {
+                        Some(SideSpec::Edge(_)) => {}
+                        Some(SideSpec::Names(_)) => {
+                            return Err(Error::input(
+                                at,
+                                format!("side {e} names edges but the case has no [[edge]] tables"),
+                            ))
+                        }
+                        None => return Err(Error::input(at, format!("missing edge {e}"))),
+                    }
+                }
+            }
+        }
         Ok(LoadedCase {
             path: path.to_path_buf(),
             case,
+            topology,
+            nodes: OnceLock::new(),
         })
     }
 
@@ -62,8 +94,11 @@ impl LoadedCase {
     }
 
     /// The `orthogonal` edges of block k as flags E1, E2, E3, E4 (unknown names are errors
-    /// naming the block).
+    /// naming the block; in a topology, edges marked orthogonal count too).
     pub fn block_orthogonal(&self, k: usize) -> Result<[bool; 4]> {
+        if let Some(t) = &self.topology {
+            return Ok(t.blocks[k].orthogonal);
+        }
         crate::elliptic::orthogonal::parse_edges(
             &self.case.blocks[k].orthogonal,
             &self.block_place(k),
@@ -72,9 +107,78 @@ impl LoadedCase {
 
     /// The validated planar boundary of block k.
     pub fn planar_boundary(&self, k: usize) -> Result<Boundary2<2>> {
+        self.planar_from(self.edge_point_lists(k)?, &self.block_place(k))
+    }
+
+    /// The validated 3D boundary of a minimal-surface block k.
+    pub fn minimal_boundary(&self, k: usize) -> Result<Boundary2<3>> {
+        let pts = self
+            .edge_point_lists(k)?
+            .map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
+        Boundary2::new(pts, &self.block_place(k))
+    }
+
+    /// Nodes of block k along i and j.
+    pub fn block_dims(&self, k: usize) -> [usize; 2] {
+        match &self.topology {
+            Some(t) => t.dims(k),
+            None => {
+                let b = &self.case.blocks[k];
+                [b.ni.unwrap_or(0), b.nj.unwrap_or(0)]
+            }
+        }
+    }
+
+    /// Rejects a block with fewer than 3 nodes along i or j.
+    pub(crate) fn check_size(&self, k: usize) -> Result<()> {
+        let [ni, nj] = self.block_dims(k);
+        if ni < 3 || nj < 3 {
+            return Err(Error::input(
+                self.block_place(k),
+                format!("ni = {ni}, nj = {nj}: a block needs at least 3 nodes each way"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The inline edge tables of block k (E1..E4; a case without topology).
+    pub(crate) fn edge_specs(&self, k: usize) -> Result<[&EdgeSpec; 4]> {
+        let mut out = Vec::with_capacity(4);
+        for (e, side) in Edge::ALL.into_iter().zip(self.case.blocks[k].sides()) {
+            match side {
+                Some(SideSpec::Edge(s)) => out.push(s),
+                _ => {
+                    return Err(Error::input(
+                        self.block_place(k),
+                        format!("side {e} is not an edge table"),
+                    ))
+                }
+            }
+        }
+        Ok([out[0], out[1], out[2], out[3]])
+    }
+
+    /// The nodes of the four edges of block k (E1..E4), from their curves (or from the
+    /// topology's shared edges).
+    fn edge_point_lists(&self, k: usize) -> Result<[Vec<Vec3>; 4]> {
+        self.check_size(k)?;
+        if let Some(t) = &self.topology {
+            return Ok(t.side_points(k, &self.topology_nodes()?));
+        }
         let place = self.block_place(k);
+        let [ni, nj] = self.block_dims(k);
+        let mut out: [Vec<Vec3>; 4] = Default::default();
+        for (e, spec) in Edge::ALL.into_iter().zip(self.edge_specs(k)?) {
+            let n = if e.runs_along_i() { ni } else { nj };
+            out[e.index()] = self.edge_points(spec, n, &format!("{place}, edge {e}"))?;
+        }
+        Ok(out)
+    }
+
+    /// The validated planar boundary from four node lists (E1..E4).
+    pub fn planar_from(&self, lists: [Vec<Vec3>; 4], place: &str) -> Result<Boundary2<2>> {
         let mut pts: [Vec<[f64; 2]>; 4] = Default::default();
-        for (e, p3) in Edge::ALL.into_iter().zip(self.edge_point_lists(k)?) {
+        for (e, p3) in Edge::ALL.into_iter().zip(lists) {
             if let Some(n) = p3.iter().position(|p| p.z != 0.0) {
                 return Err(Error::input(
                     format!("{place}, edge {e}"),
@@ -87,43 +191,7 @@ impl LoadedCase {
             }
             pts[e.index()] = p3.iter().map(|p| [p.x, p.y]).collect();
         }
-        Boundary2::new(pts, &place)
-    }
-
-    /// The validated 3D boundary of a minimal-surface block k.
-    pub fn minimal_boundary(&self, k: usize) -> Result<Boundary2<3>> {
-        let pts = self
-            .edge_point_lists(k)?
-            .map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
-        Boundary2::new(pts, &self.block_place(k))
-    }
-
-    /// Rejects a block with fewer than 3 nodes along i or j.
-    pub(crate) fn check_size(&self, k: usize) -> Result<()> {
-        let b = &self.case.blocks[k];
-        if b.ni < 3 || b.nj < 3 {
-            return Err(Error::input(
-                self.block_place(k),
-                format!(
-                    "ni = {}, nj = {}: a block needs at least 3 nodes each way",
-                    b.ni, b.nj
-                ),
-            ));
-        }
-        Ok(())
-    }
-
-    /// The nodes of the four edges of block k (E1..E4), from their curves.
-    fn edge_point_lists(&self, k: usize) -> Result<[Vec<Vec3>; 4]> {
-        let b = &self.case.blocks[k];
-        let place = self.block_place(k);
-        self.check_size(k)?;
-        let mut out: [Vec<Vec3>; 4] = Default::default();
-        for (e, spec) in Edge::ALL.into_iter().zip([&b.e1, &b.e2, &b.e3, &b.e4]) {
-            let n = if e.runs_along_i() { b.ni } else { b.nj };
-            out[e.index()] = self.edge_points(spec, n, &format!("{place}, edge {e}"))?;
-        }
-        Ok(out)
+        Boundary2::new(pts, place)
     }
 
     /// The n nodes of one edge.
@@ -155,7 +223,18 @@ impl LoadedCase {
             return Ok(p);
         }
         let curve = self.curve(curve_spec, at)?;
-        let map = geo::ArclengthMap::new(curve.as_ref());
+        self.points_on(curve.as_ref(), spec, n, at)
+    }
+
+    /// n nodes on a curve by the spec's distribution (and direction).
+    pub(crate) fn points_on(
+        &self,
+        curve: &dyn Curve,
+        spec: &EdgeSpec,
+        n: usize,
+        at: &str,
+    ) -> Result<Vec<Vec3>> {
+        let map = geo::ArclengthMap::new(curve);
         let sigma = spec.distribution.sample(n, map.length(), at)?;
         // `first` belongs to the edge's first node; a reversed edge starts at the curve's end,
         // so node k sits at curve arclength 1 − σ_k.
@@ -176,7 +255,7 @@ impl LoadedCase {
     }
 
     /// The geometric curve of a spec.
-    fn curve(&self, spec: &CurveSpec, at: &str) -> Result<Box<dyn Curve>> {
+    pub(crate) fn curve(&self, spec: &CurveSpec, at: &str) -> Result<Box<dyn Curve>> {
         let geo_err = |source| Error::Geometry {
             place: at.to_string(),
             source,

@@ -20,9 +20,15 @@ pub struct Case {
     /// Solver options shared by all blocks.
     #[serde(default)]
     pub solver: SolverSpec,
-    /// The blocks, gridded independently and written in this order.
+    /// The blocks, written in this order.
     #[serde(rename = "block", default)]
     pub blocks: Vec<BlockSpec>,
+    /// Named vertices of a multi-block topology (`[[vertex]]`).
+    #[serde(rename = "vertex", default)]
+    pub vertices: Vec<VertexSpec>,
+    /// Named edges of a multi-block topology (`[[edge]]`), shared by the blocks that name them.
+    #[serde(rename = "edge", default)]
+    pub edges: Vec<TopoEdgeSpec>,
     /// Volume blocks (`[[volume]]`, see `volume::case3d`), written after the blocks.
     #[serde(rename = "volume", default)]
     pub volumes: Vec<VolumeSpec>,
@@ -71,7 +77,8 @@ impl Default for SolverSpec {
     }
 }
 
-/// `[[block]]`: one block with its four edges.
+/// `[[block]]`: one block with its four edges: inline edge tables, or (in a case with
+/// `[[edge]]` tables) the names of the edges along each side.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BlockSpec {
@@ -81,26 +88,110 @@ pub struct BlockSpec {
     /// four 3D edges; Section 3) or "surface" (a grid on a parametrized surface; Section 4).
     #[serde(default)]
     pub kind: BlockKind,
-    /// Nodes along i (on E3 and E4).
-    pub ni: usize,
-    /// Nodes along j (on E1 and E2).
-    pub nj: usize,
+    /// Nodes along i (on E3 and E4); with named edges, optional (then checked).
+    pub ni: Option<usize>,
+    /// Nodes along j (on E1 and E2); with named edges, optional (then checked).
+    pub nj: Option<usize>,
     /// Edges at which the grid is made orthogonal (Section 2.4), e.g. `["E3"]`; default none.
     #[serde(default)]
     pub orthogonal: Vec<String>,
     #[serde(rename = "E1")]
-    pub e1: EdgeSpec,
+    pub e1: Option<SideSpec>,
     #[serde(rename = "E2")]
-    pub e2: EdgeSpec,
+    pub e2: Option<SideSpec>,
     #[serde(rename = "E3")]
-    pub e3: EdgeSpec,
+    pub e3: Option<SideSpec>,
     #[serde(rename = "E4")]
-    pub e4: EdgeSpec,
+    pub e4: Option<SideSpec>,
     /// The surface of a `kind = "surface"` block (its edges are the surface's own edges).
     pub surface: Option<SurfaceSpec>,
     /// A reference surface: the report gives the distance of the grid's nodes from it (for
     /// example Scherk's surface for a minimal-surface block spanned by edges on it).
     pub reference: Option<SurfaceSpec>,
+}
+
+impl BlockSpec {
+    /// The four sides E1..E4.
+    pub fn sides(&self) -> [&Option<SideSpec>; 4] {
+        [&self.e1, &self.e2, &self.e3, &self.e4]
+    }
+}
+
+/// A block side: an inline edge table, or the name(s) of topology edges along it, in index
+/// order (`"-name"` forces the edge to run backwards along the side).
+#[derive(Clone, Debug)]
+pub enum SideSpec {
+    Edge(EdgeSpec),
+    Names(Vec<String>),
+}
+
+impl<'de> Deserialize<'de> for SideSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = SideSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an edge table, an edge name or a list of edge names")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<SideSpec, E> {
+                Ok(SideSpec::Names(vec![v.to_string()]))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> std::result::Result<SideSpec, A::Error> {
+                Vec::<String>::deserialize(SeqAccessDeserializer::new(seq)).map(SideSpec::Names)
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> std::result::Result<SideSpec, A::Error> {
+                EdgeSpec::deserialize(MapAccessDeserializer::new(map)).map(SideSpec::Edge)
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// `[[vertex]]`: a named point of a multi-block topology.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VertexSpec {
+    pub name: String,
+    /// `[x, y]` or `[x, y, z]`.
+    pub at: Vec<f64>,
+    /// Move the vertex to the closest point of this edge's curve (a point near the curve
+    /// is enough in `at`).
+    pub on: Option<String>,
+}
+
+/// `[[edge]]`: a named edge from one vertex to another, shared by the blocks that name it.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TopoEdgeSpec {
+    pub name: String,
+    /// Vertex names; the edge's first node is at `from`.
+    pub from: String,
+    pub to: String,
+    /// Nodes on the edge, end vertices included.
+    pub n: usize,
+    /// The curve (default: the straight line between the vertices). Its ends lie on the
+    /// vertices, or the vertices lie on the curve and the edge is the piece between them.
+    pub curve: Option<CurveSpec>,
+    #[serde(default)]
+    pub distribution: DistributionSpec,
+    /// Run along the curve from its end to its start.
+    #[serde(default)]
+    pub reverse: bool,
+    /// The grid is orthogonal at the edge on every block side it lies on (Section 2.4).
+    #[serde(default)]
+    pub orthogonal: bool,
+    /// "fixed" (default: the nodes are where the distribution puts them) or "floating" (an
+    /// interior edge whose interior nodes move with the grid of the blocks it joins).
+    pub interface: Option<String>,
+    /// Boundary-patch family written to the connectivity file (default: the edge's name).
+    pub family: Option<String>,
 }
 
 /// The kind of a block.

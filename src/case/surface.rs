@@ -98,14 +98,14 @@ impl LoadedCase {
     /// placed by each edge's distribution along the surface's edge curve.
     #[allow(clippy::type_complexity)]
     pub fn surface_block(&self, k: usize) -> Result<(Box<dyn Surface>, [Vec<[f64; 2]>; 4])> {
-        let b = &self.case.blocks[k];
         let place = self.block_place(k);
         self.check_size(k)?;
         let surface = self.surface(k)?;
         let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
-        for (e, spec) in Edge::ALL.into_iter().zip([&b.e1, &b.e2, &b.e3, &b.e4]) {
+        let [ni, nj] = self.block_dims(k);
+        for (e, spec) in Edge::ALL.into_iter().zip(self.edge_specs(k)?) {
             let at = format!("{place}, edge {e}");
-            let n = if e.runs_along_i() { b.ni } else { b.nj };
+            let n = if e.runs_along_i() { ni } else { nj };
             uv[e.index()] = match (&spec.curve, spec.reverse) {
                 (None, false) => {
                     let len = edge_length(surface.as_ref(), e);

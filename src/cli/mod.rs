@@ -222,10 +222,11 @@ fn run(
     })?;
     if !quiet {
         gen.report.volumes.iter().for_each(print::volume);
+        print::interfaces(&gen.report.interfaces);
     }
     let fold = gen.report.fold_error();
     if fold.is_none() || allow_folded {
-        let written = job::write_outputs(&gen.blocks, &paths, &fmt)?;
+        let written = job::write_outputs_with(&gen.blocks, gen.topology.as_ref(), &paths, &fmt)?;
         gen.report.outputs = written.iter().map(|p| p.display().to_string()).collect();
         if !quiet {
             for p in &written {

@@ -19,8 +19,15 @@ pub fn smoothed(r: &SmoothReport) {
 /// Prints a block's Picard history and quality report.
 pub fn block(b: &BlockReport) {
     println!(
-        "block '{}' ({} × {} nodes), {:.3} s",
-        b.name, b.ni, b.nj, b.seconds
+        "block '{}' ({} × {} nodes), {:.3} s{}",
+        b.name,
+        b.ni,
+        b.nj,
+        b.seconds,
+        b.group
+            .as_ref()
+            .map(|g| format!(" (gridded as one with {g})"))
+            .unwrap_or_default()
     );
     if let Some(p) = &b.picard {
         history(p);
@@ -39,6 +46,30 @@ pub fn block(b: &BlockReport) {
         );
     }
     println!("{}", b.quality);
+}
+
+/// Prints the smoothness of the grid across every interior edge.
+pub fn interfaces(list: &[ellipgrid::job::multiblock::InterfaceReport]) {
+    if list.is_empty() {
+        return;
+    }
+    println!("interfaces: kink of the crossing grid lines (deg) and first-spacing ratio");
+    println!(
+        "  {:<16} {:<24} {:>9} {:>9} {:>9} {:>9}",
+        "edge", "blocks", "kink max", "mean", "ratio max", "mean"
+    );
+    for f in list {
+        println!(
+            "  {:<16} {:<24} {:>9.3} {:>9.3} {:>9.4} {:>9.4}{}",
+            f.edge,
+            format!("{} | {}", f.blocks[0], f.blocks[1]),
+            f.smoothness.kink_max_deg,
+            f.smoothness.kink_mean_deg,
+            f.smoothness.spacing_ratio_max,
+            f.smoothness.spacing_ratio_mean,
+            if f.floating { "  (floating)" } else { "" }
+        );
+    }
 }
 
 /// Prints a volume block's Picard history and 3D quality report.

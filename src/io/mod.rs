@@ -8,6 +8,7 @@ use std::path::Path;
 
 use crate::{Error, Grid2, Grid3, Result};
 
+pub mod connectivity;
 pub mod gltf;
 pub mod obj;
 pub mod patches;

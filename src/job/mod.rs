@@ -3,6 +3,7 @@
 //! Generation and writing are separate so that a folded grid can be reported without any
 //! output file being written.
 
+pub mod multiblock;
 pub mod smooth;
 pub mod volume;
 
@@ -30,6 +31,9 @@ pub struct BlockReport {
     pub nj: usize,
     /// Wall-clock seconds of the block's generation.
     pub seconds: f64,
+    /// The blocks gridded together with this one across floating edges ("a+b"), if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// The Picard history (planar and minimal blocks).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub picard: Option<PicardInfo>,
@@ -80,6 +84,9 @@ pub fn surface_distance(
 pub struct RunReport {
     pub case: String,
     pub blocks: Vec<BlockReport>,
+    /// Smoothness across every interior edge of a multi-block case.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub interfaces: Vec<multiblock::InterfaceReport>,
     /// Volume blocks (`[[volume]]`), after the blocks.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub volumes: Vec<crate::job::volume::VolumeReport>,
@@ -119,6 +126,8 @@ impl RunReport {
 pub struct Generated {
     pub blocks: Vec<(String, Block)>,
     pub report: RunReport,
+    /// The multi-block topology, for the connectivity file.
+    pub topology: Option<crate::grid::topology::Topology>,
 }
 
 /// Grids every block of a case. `progress` receives a line per finished block.
@@ -126,7 +135,16 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
     let spec = &case.case;
     let mut blocks = Vec::new();
     let mut reports = Vec::new();
+    let mut interfaces = Vec::new();
+    if let Some(topo) = &case.topology {
+        let g = multiblock::generate(case, topo)?;
+        g.reports.iter().for_each(&mut progress);
+        (blocks, reports, interfaces) = (g.blocks, g.reports, g.interfaces);
+    }
     for k in 0..spec.blocks.len() {
+        if case.topology.is_some() {
+            break;
+        }
         let t0 = Instant::now();
         let place = case.block_place(k);
         let mut solver = solve::select::by_name(&spec.solver.linear)
@@ -166,6 +184,7 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             ni: dims[0],
             nj: dims[1],
             seconds: t0.elapsed().as_secs_f64(),
+            group: None,
             picard,
             surface_steps,
             surface_distance,
@@ -186,9 +205,11 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
         report: RunReport {
             case: case.path.display().to_string(),
             blocks: reports,
+            interfaces,
             volumes,
             outputs: vec![],
         },
+        topology: case.topology.clone(),
     })
 }
 
@@ -252,6 +273,8 @@ pub enum OutputKind {
     Obj,
     /// A picture (`.png` or `.svg`) with the default plot options.
     Picture,
+    /// The connectivity of a multi-block case (`.conn`).
+    Connectivity,
 }
 
 /// The output kind of a path, or an error listing the known extensions.
@@ -269,10 +292,11 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
         "gltf" => Ok(OutputKind::Gltf),
         "obj" => Ok(OutputKind::Obj),
         "png" | "svg" => Ok(OutputKind::Picture),
+        "conn" => Ok(OutputKind::Connectivity),
         _ => Err(Error::input(
             path.display().to_string(),
             "unknown output extension: use .x/.xyz/.p3d/.g (Plot3D), .vts or .vtm (VTK), \
-             .glb/.gltf (glTF), .obj (OBJ), .png/.svg (picture)",
+             .glb/.gltf (glTF), .obj (OBJ), .png/.svg (picture), .conn (connectivity)",
         )),
     }
 }
@@ -292,11 +316,31 @@ pub fn write_outputs(
     paths: &[PathBuf],
     fmt: &Plot3dFormat,
 ) -> Result<Vec<PathBuf>> {
+    write_outputs_with(blocks, None, paths, fmt)
+}
+
+/// [`write_outputs`] with the topology of a multi-block case (for `.conn` files).
+pub fn write_outputs_with(
+    blocks: &[(String, Block)],
+    topology: Option<&crate::grid::topology::Topology>,
+    paths: &[PathBuf],
+    fmt: &Plot3dFormat,
+) -> Result<Vec<PathBuf>> {
     // Check every path first, so that a bad name late in the list writes nothing.
     let kinds = paths
         .iter()
         .map(|p| output_kind(p))
         .collect::<Result<Vec<_>>>()?;
+    if let Some(p) = paths
+        .iter()
+        .zip(&kinds)
+        .find(|(_, k)| **k == OutputKind::Connectivity && topology.is_none())
+    {
+        return Err(Error::input(
+            p.0.display().to_string(),
+            "a connectivity file needs a multi-block case (with [[edge]] tables)",
+        ));
+    }
     let mut written = Vec::new();
     for (path, kind) in paths.iter().zip(kinds) {
         match kind {
@@ -351,6 +395,11 @@ pub fn write_outputs(
             OutputKind::Obj => {
                 obj::write_obj(path, blocks)?;
                 written.push(path.with_extension("mtl"));
+                written.push(path.clone());
+            }
+            OutputKind::Connectivity => {
+                let topo = topology.expect("checked above");
+                crate::io::connectivity::write(path, topo, blocks)?;
                 written.push(path.clone());
             }
             OutputKind::Picture => {

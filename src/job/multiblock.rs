@@ -1,0 +1,176 @@
+//! Runs a multi-block case (`[[vertex]]`, `[[edge]]`, blocks naming edges): every group of
+//! blocks (a block, or a row joined by floating edges) is gridded as one block, the groups in
+//! parallel; shared edges give bit-identical nodes; the report gives the smoothness of every
+//! interface.
+
+use super::{surface_distance, BlockReport};
+use crate::case::{BlockKind, LoadedCase};
+use crate::elliptic::orthogonal::grid_block_with;
+use crate::elliptic::picard::PicardInfo;
+use crate::grid::boundary::Boundary2;
+use crate::grid::topology::{Group, Topology};
+use crate::grid::Grid2;
+use crate::io::Block;
+use crate::quality::interface::{interface_smoothness, InterfaceSmoothness};
+use crate::quality::{self, QualityReport};
+use crate::solve;
+use crate::{Error, Result};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Smoothness of the grid across one interior edge.
+#[derive(Clone, Debug, Serialize)]
+pub struct InterfaceReport {
+    pub edge: String,
+    pub blocks: [String; 2],
+    /// True if the edge floats (its interior nodes moved with the grid).
+    pub floating: bool,
+    #[serde(flatten)]
+    pub smoothness: InterfaceSmoothness,
+}
+
+/// The grids and reports of every block (in case order) and of every interface.
+pub(super) struct Gridded {
+    pub blocks: Vec<(String, Block)>,
+    pub reports: Vec<BlockReport>,
+    pub interfaces: Vec<InterfaceReport>,
+}
+
+/// Grids every group of a topology.
+pub(super) fn generate(case: &LoadedCase, topo: &Topology) -> Result<Gridded> {
+    let place = case.path.display().to_string();
+    let groups = topo.groups(&place)?;
+    case.topology_nodes()?;
+    let done: Vec<Vec<(usize, Block, BlockReport)>> = groups
+        .par_iter()
+        .map(|g| grid_group(case, topo, g))
+        .collect::<Result<_>>()?;
+    let mut slots: Vec<Option<(Block, BlockReport)>> =
+        (0..topo.blocks.len()).map(|_| None).collect();
+    for (b, block, rep) in done.into_iter().flatten() {
+        slots[b] = Some((block, rep));
+    }
+    let (blocks, reports): (Vec<_>, Vec<_>) = slots
+        .into_iter()
+        .map(|s| s.expect("every block is in a group"))
+        .map(|(block, rep)| ((rep.name.clone(), block), rep))
+        .unzip();
+    let interfaces = topo
+        .connectivity()
+        .interfaces
+        .iter()
+        .filter_map(|f| {
+            let smoothness = match (&blocks[f.a.block].1, &blocks[f.b.block].1) {
+                (Block::Planar(a), Block::Planar(b)) => interface_smoothness(a, &f.a, b, &f.b),
+                (Block::Surface(a), Block::Surface(b)) => interface_smoothness(a, &f.a, b, &f.b),
+                _ => return None,
+            };
+            Some(InterfaceReport {
+                edge: topo.edges[f.edge].name.clone(),
+                blocks: [f.a.block, f.b.block].map(|b| topo.blocks[b].name.clone()),
+                floating: topo.edges[f.edge].floating,
+                smoothness,
+            })
+        })
+        .collect();
+    Ok(Gridded {
+        blocks,
+        reports,
+        interfaces,
+    })
+}
+
+/// Grids one group and cuts it into its blocks.
+fn grid_group(
+    case: &LoadedCase,
+    topo: &Topology,
+    g: &Group,
+) -> Result<Vec<(usize, Block, BlockReport)>> {
+    let t0 = Instant::now();
+    let file = case.path.display().to_string();
+    let place = if g.pieces.len() == 1 {
+        topo.block_place(&file, g.pieces[0].block)
+    } else {
+        format!("{file}: blocks {} (joined by floating edges)", g.name)
+    };
+    let kind = case.case.blocks[g.pieces[0].block].kind;
+    if let Some(p) = g
+        .pieces
+        .iter()
+        .find(|p| case.case.blocks[p.block].kind != kind)
+    {
+        return Err(Error::input(
+            place,
+            format!(
+                "block '{}' is {:?} but '{}' is {:?}; blocks joined by floating edges are of \
+                 one kind",
+                topo.blocks[p.block].name,
+                case.case.blocks[p.block].kind,
+                topo.blocks[g.pieces[0].block].name,
+                kind
+            ),
+        ));
+    }
+    let spec = &case.case.solver;
+    let mut solver = solve::select::by_name(&spec.linear)
+        .map_err(|m| Error::input(format!("{file}: [solver]"), m))?;
+    let lists = case.group_points(g)?;
+    let params = &spec.picard;
+    let mut out = Vec::new();
+    let mut finish = |b: usize, block: Block, picard: &PicardInfo, q: QualityReport, d| {
+        let dims = block.dims();
+        let rep = BlockReport {
+            name: topo.blocks[b].name.clone(),
+            ni: dims[0],
+            nj: dims[1],
+            seconds: t0.elapsed().as_secs_f64(),
+            group: (g.pieces.len() > 1).then(|| g.name.clone()),
+            picard: Some(picard.clone()),
+            surface_steps: None,
+            surface_distance: d,
+            quality: q,
+        };
+        out.push((b, block, rep));
+    };
+    match kind {
+        BlockKind::Planar => {
+            let bnd = case.planar_from(lists, &place)?;
+            let r = solve_group(&bnd, g, case, solver.as_mut(), params, &place)?;
+            for p in &g.pieces {
+                let grid = p.cut(&r.grid);
+                let q = quality::quality2d(&grid);
+                finish(p.block, Block::Planar(grid), &r.picard, q, None);
+            }
+        }
+        BlockKind::Minimal => {
+            let pts = lists.map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
+            let bnd = Boundary2::new(pts, &place)?;
+            let r = solve_group(&bnd, g, case, solver.as_mut(), params, &place)?;
+            for p in &g.pieces {
+                let grid = p.cut(&r.grid);
+                let q = quality::quality_surface(&grid);
+                let at = topo.block_place(&file, p.block);
+                let d = match case.reference_surface(p.block)? {
+                    Some(s) => Some(surface_distance(&grid, s.as_ref(), &at)?),
+                    None => None,
+                };
+                finish(p.block, Block::Surface(grid), &r.picard, q, d);
+            }
+        }
+        BlockKind::Surface => unreachable!("refused when the topology is built"),
+    }
+    Ok(out)
+}
+
+fn solve_group<const D: usize>(
+    bnd: &Boundary2<D>,
+    g: &Group,
+    case: &LoadedCase,
+    solver: &mut dyn solve::LinearSolver,
+    params: &crate::elliptic::picard::PicardParams,
+    place: &str,
+) -> Result<crate::elliptic::picard::Solved<Grid2<D>>> {
+    let ctrl = case.case.solver.control;
+    grid_block_with(bnd, None, g.orthogonal, ctrl, solver, params, place)
+}

@@ -1,0 +1,64 @@
+//! Smoothness of a multi-block grid across an interior edge: the kink of the grid lines that
+//! cross it (the angle between the line directions on the two sides; 0 when a line goes
+//! straight through) and the ratio of the first spacings on the two sides (1 when they match).
+//! The edge's end nodes (vertices, where blocks meet at corners) are not counted.
+
+use crate::grid::topology::SideRange;
+use crate::Grid2;
+use serde::Serialize;
+
+/// Kink and spacing ratio along one interface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct InterfaceSmoothness {
+    /// Nodes measured (the edge's interior nodes).
+    pub nodes: usize,
+    /// Largest and mean kink angle of the crossing grid lines, degrees.
+    pub kink_max_deg: f64,
+    pub kink_mean_deg: f64,
+    /// Largest and mean ratio of the larger to the smaller first spacing (≥ 1).
+    pub spacing_ratio_max: f64,
+    pub spacing_ratio_mean: f64,
+}
+
+/// The smoothness across an interface: node k of `ra` in `ga` is node k of `rb` in `gb`.
+pub fn interface_smoothness<const D: usize>(
+    ga: &Grid2<D>,
+    ra: &SideRange,
+    gb: &Grid2<D>,
+    rb: &SideRange,
+) -> InterfaceSmoothness {
+    let n = ra.len();
+    let mut s = InterfaceSmoothness::default();
+    for k in 1..n.saturating_sub(1) {
+        let p = at(ga, ra.node(k));
+        let a = sub(&at(ga, ra.inner(k)), &p);
+        let b = sub(&at(gb, rb.inner(k)), &p);
+        let (la, lb) = (norm(&a), norm(&b));
+        // Straight through: a and b point in opposite directions.
+        let cos = -a.iter().zip(&b).map(|(u, v)| u * v).sum::<f64>() / (la * lb);
+        let kink = cos.clamp(-1.0, 1.0).acos().to_degrees();
+        let ratio = la.max(lb) / la.min(lb);
+        s.nodes += 1;
+        s.kink_max_deg = s.kink_max_deg.max(kink);
+        s.kink_mean_deg += kink;
+        s.spacing_ratio_max = s.spacing_ratio_max.max(ratio);
+        s.spacing_ratio_mean += ratio;
+    }
+    if s.nodes > 0 {
+        s.kink_mean_deg /= s.nodes as f64;
+        s.spacing_ratio_mean /= s.nodes as f64;
+    }
+    s
+}
+
+fn at<const D: usize>(g: &Grid2<D>, [i, j]: [usize; 2]) -> [f64; D] {
+    g.point(i, j)
+}
+
+fn sub<const D: usize>(a: &[f64; D], b: &[f64; D]) -> [f64; D] {
+    std::array::from_fn(|c| a[c] - b[c])
+}
+
+fn norm<const D: usize>(a: &[f64; D]) -> f64 {
+    a.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
