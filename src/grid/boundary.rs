@@ -228,7 +228,7 @@ fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 }
 
 /// True if the closed segments p1p2 and q1q2 intersect (touching counts).
-fn segments_cross(p1: [f64; 2], p2: [f64; 2], q1: [f64; 2], q2: [f64; 2]) -> bool {
+pub(crate) fn segments_cross(p1: [f64; 2], p2: [f64; 2], q1: [f64; 2], q2: [f64; 2]) -> bool {
     let d1 = orient(q1, q2, p1);
     let d2 = orient(q1, q2, p2);
     let d3 = orient(p1, p2, q1);

@@ -424,7 +424,7 @@ fn bbox(p: &[[f64; 2]]) -> [f64; 4] {
     )
 }
 
-/// True if segments of the two polylines intersect, ignoring the touching of segments that
+/// True if segments of the two polylines intersect or touch, ignoring the touching of segments that
 /// end at a vertex both edges share (and neighbouring segments of one edge).
 fn polylines_cross(topo: &Topology, a: usize, b: usize, pa: &[[f64; 2]], pb: &[[f64; 2]]) -> bool {
     let (ea, eb) = (&topo.edges[a], &topo.edges[b]);
@@ -453,22 +453,12 @@ fn polylines_cross(topo: &Topology, a: usize, b: usize, pa: &[[f64; 2]], pb: &[[
             if a != b && shared(ia, ib) {
                 continue;
             }
-            if segments_cross(pa[ia], pa[ia + 1], pb[ib], pb[ib + 1]) {
+            if crate::grid::boundary::segments_cross(pa[ia], pa[ia + 1], pb[ib], pb[ib + 1]) {
                 return true;
             }
         }
     }
     false
-}
-
-/// Proper or touching intersection of segments pq and rs.
-fn segments_cross(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
-    let orient = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
-        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-    };
-    let (d1, d2) = (orient(r, s, p), orient(r, s, q));
-    let (d3, d4) = (orient(p, q, r), orient(p, q, s));
-    (d1 > 0.0) != (d2 > 0.0) && (d3 > 0.0) != (d4 > 0.0) && d1 != 0.0 && d3 != 0.0
 }
 
 #[cfg(test)]
