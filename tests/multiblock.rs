@@ -311,10 +311,11 @@ fn check_connectivity(grid: &Path, conn: &Path) -> ConnFile {
     c
 }
 
-#[test]
-fn the_naca0012_o_grid_example_runs_fold_free_with_a_matching_connectivity_file() {
+/// Runs a shipped multi-block example through the CLI: every block converged, fold-free and
+/// right-handed; the connectivity file matches the grid node for node and covers every side.
+fn paper_example(name: &str, interfaces: usize, patches: usize, families: &[&str]) {
     let d = tempfile::tempdir().unwrap();
-    let case = root().join("examples/naca0012_ogrid.toml");
+    let case = root().join(format!("examples/{name}.toml"));
     let o = ellipgrid(
         d.path(),
         &["run", case.to_str().unwrap(), "--report", "r.json"],
@@ -323,18 +324,73 @@ fn the_naca0012_o_grid_example_runs_fold_free_with_a_matching_connectivity_file(
     let r: serde_json::Value =
         serde_json::from_str(&fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
     for b in r["blocks"].as_array().unwrap() {
-        assert_eq!(b["quality"]["folded_cells"], 0, "{}", b["name"]);
-        assert_eq!(b["picard"]["converged"], true, "{}", b["name"]);
+        assert_eq!(b["quality"]["folded_cells"], 0, "{name}: {}", b["name"]);
+        assert_eq!(
+            b["quality"]["orientation"], "right-handed",
+            "{name}: {}",
+            b["name"]
+        );
+        assert_eq!(b["picard"]["converged"], true, "{name}: {}", b["name"]);
     }
-    assert_eq!(r["interfaces"].as_array().unwrap().len(), 4);
-    let c = check_connectivity(
-        &d.path().join("naca0012_ogrid.x"),
-        &d.path().join("naca0012_ogrid.conn"),
+    assert_eq!(
+        r["interfaces"].as_array().unwrap().len(),
+        interfaces,
+        "{name}"
     );
-    assert_eq!(c.interfaces.len(), 4);
-    assert_eq!(c.patches.len(), 8);
+    let c = check_connectivity(
+        &d.path().join(format!("{name}.x")),
+        &d.path().join(format!("{name}.conn")),
+    );
+    assert_eq!(c.interfaces.len(), interfaces, "{name}");
+    assert_eq!(c.patches.len(), patches, "{name}");
     let names: Vec<&str> = c.families.iter().map(|(_, n)| n.as_str()).collect();
-    assert_eq!(names, ["airfoil", "farfield"]);
+    assert_eq!(names, families, "{name}");
+}
+
+#[test]
+fn the_naca0012_o_grid_example_runs_fold_free_with_a_matching_connectivity_file() {
+    paper_example("naca0012_ogrid", 4, 8, &["airfoil", "farfield"]);
+}
+
+#[test]
+fn the_rae2822_c_grid_example_runs_fold_free_with_a_matching_connectivity_file() {
+    paper_example("rae2822_cgrid", 4, 8, &["airfoil", "farfield", "outflow"]);
+}
+
+#[test]
+fn the_nlr7301_flap_example_runs_fold_free_with_a_matching_connectivity_file() {
+    paper_example(
+        "nlr7301_flap",
+        9,
+        19,
+        &["main", "flap", "farfield", "outflow"],
+    );
+}
+
+#[test]
+fn the_artificial_boundary_example_runs_fold_free_from_a_folded_start() {
+    paper_example("artificial_boundary", 3, 6, &["wall", "farfield"]);
+    // The transfinite start folds (the paper's Fig. 19); the elliptic grid above does not.
+    let d = tempfile::tempdir().unwrap();
+    let case = root().join("examples/artificial_boundary.toml");
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "--write-start",
+            "start.x",
+            "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let o = ellipgrid(d.path(), &["check", "start.x"]);
+    assert!(
+        !o.status.success(),
+        "the start grid should fold: {}",
+        text(&o)
+    );
+    assert!(text(&o).contains("folded cell"), "{}", text(&o));
 }
 
 const CIRCLE: &str =

@@ -223,6 +223,9 @@ fn dirichlet_values<const D: usize>(
     Ok(val)
 }
 
+/// The relative residual accepted when the iteration stalls short of its 1e-12 target.
+const ACCEPT: f64 = 1e-9;
+
 /// Solves div(A grad s) = 0 on grid `g`, eqs. [50]–[53], with one condition per edge
 /// (`conds` in the order E1, E2, E3, E4). Returns s at every node (i fastest).
 ///
@@ -250,9 +253,16 @@ pub fn solve_harmonic<const D: usize>(
         max_iter: 200,
     };
     let info = solver.solve(&rhs, &mut x, &ctl).map_err(solve_err)?;
-    if !info.converged {
-        let r = info.residual_history.last().copied().unwrap_or(f64::NAN);
-        return Err(solve_err(SolveError::Diverged(r)));
+    // The iteration aims at 1e-12 but may stall at round-off on strongly stretched grids
+    // (1e-5 wall spacing next to 1-chord far-field cells); 1e-9 is far below what the
+    // orthogonality step needs.
+    let r = info.residual_history.last().copied().unwrap_or(f64::NAN);
+    let accepted = r.partial_cmp(&ACCEPT).is_some_and(|o| o.is_le());
+    if !info.converged && !accepted {
+        return Err(solve_err(SolveError::NotConverged {
+            iterations: info.iterations,
+            residual: r,
+        }));
     }
     for jj in 0..u.ny {
         for ii in 0..u.nx {

@@ -61,7 +61,10 @@ pub fn parse_edges<S: AsRef<str>>(names: &[S], place: &str) -> Result<[bool; 4]>
 }
 
 /// The new edge functions of eq. [46] from the harmonic (s, t) on grid `g`: s along E3/E4,
-/// t along E1/E2. They must increase strictly along each edge.
+/// t along E1/E2. They must increase strictly along each edge. The discrete harmonic solution
+/// can fall back by round-off-sized amounts over a few nodes where the step-1 grid is very
+/// skewed (a corner with 1e-5 spacing next to a deep concave wall); such short runs are
+/// bridged by interpolation in arclength ([`monotone`]), longer ones are errors.
 pub fn edge_functions<const D: usize>(
     g: &Grid2<D>,
     s: &[f64],
@@ -69,22 +72,25 @@ pub fn edge_functions<const D: usize>(
     place: &str,
 ) -> Result<EdgeFunctions> {
     let (ni, nj) = (g.ni(), g.nj());
-    let ef = EdgeFunctions {
-        s_e3: (0..ni).map(|i| s[g.idx(i, 0)]).collect(),
-        s_e4: (0..ni).map(|i| s[g.idx(i, nj - 1)]).collect(),
-        t_e1: (0..nj).map(|j| t[g.idx(0, j)]).collect(),
-        t_e2: (0..nj).map(|j| t[g.idx(ni - 1, j)]).collect(),
+    let along = |nodes: Vec<(usize, usize)>, f: &[f64]| -> (Vec<f64>, Vec<f64>) {
+        let v = nodes.iter().map(|&(i, j)| f[g.idx(i, j)]).collect();
+        let mut arc = vec![0.0];
+        for w in nodes.windows(2) {
+            let (p, q) = (g.point(w[0].0, w[0].1), g.point(w[1].0, w[1].1));
+            let d: f64 = (0..D).map(|c| (q[c] - p[c]).powi(2)).sum::<f64>().sqrt();
+            arc.push(arc.last().copied().unwrap_or(0.0) + d);
+        }
+        (v, arc)
     };
-    for (e, v) in [
-        (Edge::E1, &ef.t_e1),
-        (Edge::E2, &ef.t_e2),
-        (Edge::E3, &ef.s_e3),
-        (Edge::E4, &ef.s_e4),
+    let mut out: Vec<Vec<f64>> = Vec::with_capacity(4);
+    for (e, nodes, f) in [
+        (Edge::E1, (0..nj).map(|j| (0, j)).collect::<Vec<_>>(), t),
+        (Edge::E2, (0..nj).map(|j| (ni - 1, j)).collect(), t),
+        (Edge::E3, (0..ni).map(|i| (i, 0)).collect(), s),
+        (Edge::E4, (0..ni).map(|i| (i, nj - 1)).collect(), s),
     ] {
-        if let Some(k) = v
-            .windows(2)
-            .position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
-        {
+        let (mut v, arc) = along(nodes, f);
+        if let Err(k) = monotone(&mut v, &arc) {
             return Err(Error::input(
                 format!("{place}, edge {e}"),
                 format!(
@@ -94,8 +100,68 @@ pub fn edge_functions<const D: usize>(
                 ),
             ));
         }
+        out.push(v);
     }
-    Ok(ef)
+    let [t_e1, t_e2, s_e3, s_e4]: [Vec<f64>; 4] = out.try_into().expect("four edges");
+    Ok(EdgeFunctions {
+        s_e3,
+        s_e4,
+        t_e1,
+        t_e2,
+    })
+}
+
+/// Makes `v` strictly increasing from its first to its last value: an interior node is kept
+/// if it lies above the last kept node and below the last value; runs of other nodes are
+/// bridged by linear interpolation in arclength `arc` between the kept nodes around them.
+/// Runs longer than an eighth of the edge (at least 3 nodes) are refused: `Err(k)` names the
+/// node pair (k, k + 1) where such a run starts (as does a last value not above the first).
+fn monotone(v: &mut [f64], arc: &[f64]) -> std::result::Result<(), usize> {
+    let n = v.len();
+    let (first, last) = (v[0], v[n - 1]);
+    if last.partial_cmp(&first) != Some(std::cmp::Ordering::Greater) {
+        return Err(0);
+    }
+    let limit = (n / 8).max(3);
+    let mut lo = 0;
+    for k in 1..n {
+        let keep = k == n - 1 || (v[k] > v[lo] && v[k] < last);
+        if !keep {
+            continue;
+        }
+        if k - lo - 1 > limit || arc[k].partial_cmp(&arc[lo]) != Some(std::cmp::Ordering::Greater) {
+            return Err(lo);
+        }
+        for m in lo + 1..k {
+            v[m] = v[lo] + (v[k] - v[lo]) * (arc[m] - arc[lo]) / (arc[k] - arc[lo]);
+        }
+        lo = k;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod monotone_tests {
+    use super::monotone;
+
+    #[test]
+    fn short_dips_are_bridged_and_long_ones_refused() {
+        let arc: Vec<f64> = (0..17).map(|k| k as f64).collect();
+        let mut v: Vec<f64> = (0..17).map(|k| k as f64 / 16.0).collect();
+        v[5] = v[4] - 1e-9; // a dip of two nodes
+        v[6] = v[4];
+        monotone(&mut v, &arc).unwrap();
+        assert!(v.windows(2).all(|w| w[1] > w[0]));
+        assert!((v[5] - 5.0 / 16.0).abs() < 1e-12 && (v[6] - 6.0 / 16.0).abs() < 1e-12);
+        // An overshoot of the end value next to the end is bridged too.
+        let mut over: Vec<f64> = (0..17).map(|k| k as f64 / 16.0).collect();
+        over[15] = 1.0 + 1e-8;
+        monotone(&mut over, &arc).unwrap();
+        assert!(over.windows(2).all(|w| w[1] > w[0]));
+        let mut flat = vec![0.0; 17];
+        flat[16] = 1.0;
+        assert_eq!(monotone(&mut flat, &arc), Err(0));
+    }
 }
 
 /// The three steps of Section 2.4 with full diagnostics (see the module docs). `orthogonal`

@@ -93,6 +93,10 @@ pub enum SolveError {
     Singular(String),
     #[error("linear solver: the iteration diverged (relative residual {0:.3e})")]
     Diverged(f64),
+    #[error(
+        "linear solver: no convergence in {iterations} iterations (relative residual {residual:.3e})"
+    )]
+    NotConverged { iterations: usize, residual: f64 },
     #[error("linear solver: solve called before setup")]
     NotSetUp,
 }
