@@ -64,7 +64,7 @@ pub fn parse_edges<S: AsRef<str>>(names: &[S], place: &str) -> Result<[bool; 4]>
 /// t along E1/E2. They must increase strictly along each edge. The discrete harmonic solution
 /// can fall back by round-off-sized amounts over a few nodes where the step-1 grid is very
 /// skewed (a corner with 1e-5 spacing next to a deep concave wall); such short runs are
-/// bridged by interpolation in arclength ([`monotone`]), longer ones are errors.
+/// bridged by interpolation in arclength (`monotone`), longer ones are errors.
 pub fn edge_functions<const D: usize>(
     g: &Grid2<D>,
     s: &[f64],
