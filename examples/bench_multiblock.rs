@@ -8,7 +8,9 @@
 //! Cases: `naca0012_ogrid` as shipped (4 × 65 × 49) and with every edge at 257 nodes
 //! (4 × 257²); `rae2822_cgrid` as shipped and with every node count doubled (minus one);
 //! `nlr7301_flap` and `artificial_boundary` as shipped. `--quick` drops the refined cases.
-//! Each case runs `--repeat` times (default 3); the best wall-clock time is printed.
+//! Each case runs `--repeat` times (default 3); the best wall-clock time is printed, with
+//! plain Picard steps (`anderson = 0`, the default) and with Anderson acceleration of depth 5
+//! side by side.
 
 use ellipgrid::case::LoadedCase;
 use ellipgrid::job;
@@ -33,19 +35,27 @@ fn run(label: &str, file: &str, edit: impl Fn(&str) -> String, repeat: usize) {
         .join("examples")
         .join(file);
     let text = edit(&std::fs::read_to_string(&path).expect("read case"));
-    let case = LoadedCase::parse(&text, &path).expect("parse case");
+    for depth in [0, 5] {
+        let mut case = LoadedCase::parse(&text, &path).expect("parse case");
+        case.case.solver.picard.anderson = depth;
+        time(&format!("{label} (anderson {depth})"), &case, repeat);
+    }
+}
+
+/// Best-of-`repeat` wall clock of one case, with the Picard steps of every block.
+fn time(label: &str, case: &LoadedCase, repeat: usize) {
     let mut best = f64::INFINITY;
     let mut last = None;
     for _ in 0..repeat.max(1) {
         let t = Instant::now();
-        let g = job::generate(&case, |_| {}).expect("generate");
+        let g = job::generate(case, |_| {}).expect("generate");
         best = best.min(t.elapsed().as_secs_f64());
         last = Some(g);
     }
     let g = last.expect("one run");
     let nodes: usize = g.report.blocks.iter().map(|b| b.ni * b.nj).sum();
     println!(
-        "{label:<28} {:>2} blocks {nodes:>8} nodes  {best:>7.3} s  (best of {repeat}, {} threads)",
+        "{label:<41} {:>2} blocks {nodes:>8} nodes  {best:>7.3} s  (best of {repeat}, {} threads)",
         g.report.blocks.len(),
         rayon::current_num_threads()
     );

@@ -5,6 +5,7 @@
 //! | what | equations | module |
 //! |---|---|---|
 //! | one inexact Picard iteration (2D and 3D) | [41–44] | [`picard`] |
+//! | Anderson acceleration of the Picard steps | [43, 44] | [`anderson`] |
 //! | the 2D / minimal-surface system, nine-point assembly | [24] [43, 44] | [`poisson2d`] |
 //! | the volume system, 19-point assembly | [86]–[88] | [`poisson3d`] |
 //! | nested iteration, work units | — | [`nested`], [`nested3d`] |
@@ -13,6 +14,7 @@
 //! | harmonic s, t with Neumann edges | [50–53] | [`harmonic`] |
 //! | orthogonality at chosen edges (Section 2.4) | [46–49] | [`orthogonal`] |
 //! | wall spacing and wall-normal lines of volume blocks | — | [`mod@wall`], [`wall_normal`] |
+pub mod anderson;
 pub mod domain;
 pub mod harmonic;
 pub mod nested;

@@ -125,6 +125,11 @@ pub(crate) trait Problem {
     fn transfinite(&self) -> &Self::Grid;
     /// Control functions of level `lev` (stride 2^lev) of `dims` nodes; `place` for errors.
     fn control(&self, lev: usize, dims: &[usize], place: &str) -> Result<Cow<'_, Self::Ctrl>>;
+    /// The grid a level starts from when no coarser level has given it one (the coarsest
+    /// level, or after a failed level): `None` for the transfinite grid.
+    fn start(&self, _lev: usize) -> Option<Self::Grid> {
+        None
+    }
 }
 
 /// `f(u, v)` of two coordinate arrays, element by element (rayon).
@@ -158,7 +163,7 @@ pub(crate) fn run<P: Problem, const N: usize>(
         };
         let ctrl = p.control(lev, &dims, place)?;
         let mut x = match &prev {
-            None => t_lev.clone(),
+            None => p.start(lev).unwrap_or_else(|| t_lev.clone()),
             Some((d2, d4)) => {
                 let d = match d4 {
                     Some(d4) => d2.zip_with(&d4.prolong(), richardson),
@@ -239,10 +244,12 @@ pub(crate) fn mid_weights(k: usize, m: usize) -> (usize, [f64; 4]) {
     }
 }
 
-/// A 2D block: its transfinite grid and, for algebraic control functions, its (s, t) grid.
+/// A 2D block: its transfinite grid, for algebraic control functions its (s, t) grid, and
+/// the grid (if any) that a level starts from instead of the transfinite one.
 struct Block<const D: usize> {
     tf: Grid2<D>,
     pg: Option<ParamGrid>,
+    start: Option<Grid2<D>>,
 }
 
 impl<const D: usize> Problem for Block<D> {
@@ -260,6 +267,10 @@ impl<const D: usize> Problem for Block<D> {
             Some(pg) => Control2::from_algebraic(&subsample_param(pg, 1 << lev)),
             None => Control2::zeros([dims[0], dims[1]]),
         }))
+    }
+
+    fn start(&self, lev: usize) -> Option<Grid2<D>> {
+        self.start.as_ref().map(|g| g.subsample(1 << lev))
     }
 }
 
@@ -287,6 +298,35 @@ pub fn grid_block_nested<const D: usize>(
     let block = Block {
         tf: transfinite(b),
         pg,
+        start: None,
+    };
+    run(&block, &sizes, place, t0, |x, ctrl, stop, at, _| {
+        poisson2d::solve_timed(x, ctrl, solver, params, stop, at)
+    })
+}
+
+/// Solves [24] with the algebraic control functions of the (s, t) grid `pg` (on coarse levels:
+/// `pg` sub-sampled), every level without a coarser prediction starting from `start`
+/// sub-sampled: step 3 of Section 2.4 ([`crate::elliptic::orthogonal`]), nested as
+/// [`grid_block_nested`]. `t0` is the start of the whole generation (for the work units).
+pub(crate) fn solve_nested_from<const D: usize>(
+    b: &Boundary2<D>,
+    start: Grid2<D>,
+    pg: ParamGrid,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    place: &str,
+    t0: Instant,
+) -> Result<(Solved<Grid2<D>>, NestedInfo)> {
+    let sizes = if params.nested_for(solver.name()) {
+        sizes([b.ni(), b.nj()])
+    } else {
+        vec![[b.ni(), b.nj()]]
+    };
+    let block = Block {
+        tf: transfinite(b),
+        pg: Some(pg),
+        start: Some(start),
     };
     run(&block, &sizes, place, t0, |x, ctrl, stop, at, _| {
         poisson2d::solve_timed(x, ctrl, solver, params, stop, at)

@@ -5,7 +5,9 @@
 //! 2. On that grid, solve the Neumann problems of [`crate::elliptic::harmonic::harmonic_st`] (zero normal
 //!    flux at the orthogonal edges); their boundary values are the new edge functions [46].
 //! 3. Hermite-blend those edge functions ([`crate::algebraic::blend::hermite_blend`], [47]–[49]), take the
-//!    control functions [19] of the blend, and solve [24] again from the grid of step 1.
+//!    control functions [19] of the blend, and solve [24] again from the grid of step 1 (with
+//!    nested iteration when step 1 had it: every level starts from step 1's grid sub-sampled
+//!    unless a coarser level predicts it, see [`crate::elliptic::nested`]).
 //!
 //! Corners keep their boundary points: a grid cannot be orthogonal at a corner whose angle is
 //! not 90°, so orthogonality is reached away from such corners and improves under refinement.
@@ -17,6 +19,7 @@ use crate::algebraic::control2d::Control2;
 use crate::algebraic::ControlKind;
 use crate::elliptic::domain::grid_block;
 use crate::elliptic::harmonic::harmonic_st;
+use crate::elliptic::nested;
 use crate::elliptic::picard::BlockResult;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::poisson2d;
@@ -185,6 +188,8 @@ fn steps<const D: usize>(
     params: &PicardParams,
     place: &str,
 ) -> Result<OrthogonalResult<D>> {
+    let t0 = std::time::Instant::now();
+    let nested = start.is_none() && params.nested_for(solver.name());
     let step1 = grid_block(b, start, ControlKind::Algebraic, solver, params, place)?;
     if !orthogonal.contains(&true) {
         return Ok(OrthogonalResult {
@@ -197,8 +202,13 @@ fn steps<const D: usize>(
     let (s, t) = harmonic_st(&step1.grid, orthogonal, solver, place)?;
     let ef = edge_functions(&step1.grid, &s, &t, place)?;
     let pg = hermite_blend(&ef, orthogonal, place)?;
-    let ctrl = Control2::from_algebraic(&pg);
-    let (grid, picard) = poisson2d::solve_from(b, step1.grid, &ctrl, solver, params, place)?;
+    let (grid, picard) = if nested {
+        let (r, _) = nested::solve_nested_from(b, step1.grid, pg, solver, params, place, t0)?;
+        (r.grid, r.picard)
+    } else {
+        let ctrl = Control2::from_algebraic(&pg);
+        poisson2d::solve_from(b, step1.grid, &ctrl, solver, params, place)?
+    };
     Ok(OrthogonalResult {
         grid,
         picard,

@@ -267,6 +267,10 @@ impl<const D: usize> picard::System for System2<'_, D> {
             f64::NAN
         }
     }
+
+    fn diameter(&self) -> f64 {
+        self.diam
+    }
 }
 
 /// Convenience: the start grid with the boundary of `b` and the solve of [24] from it.

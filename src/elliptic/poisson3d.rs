@@ -291,6 +291,10 @@ impl picard::System for System3<'_> {
         }
         largest / self.diam
     }
+
+    fn diameter(&self) -> f64 {
+        self.diam
+    }
 }
 
 /// Bounding-box diagonal of a volume grid.

@@ -30,9 +30,9 @@ use crate::{Grid3, Result};
 
 static PROGRESS: AtomicBool = AtomicBool::new(false);
 
-/// Enables (or disables) the terminal progress bar of long volume solves (Picard step and
-/// residual on stderr; drawn only when stderr is a terminal). Off by default; the CLI turns
-/// it on unless `--quiet`.
+/// Enables (or disables) the terminal progress bars: of long volume solves (Picard step and
+/// residual) and over the blocks of a multi-block case, on stderr, drawn only when stderr is
+/// a terminal. Off by default; the CLI turns it on unless `--quiet`.
 pub fn set_progress(on: bool) {
     PROGRESS.store(on, Ordering::Relaxed);
 }

@@ -42,10 +42,20 @@ pub(super) fn generate(case: &LoadedCase, topo: &Topology) -> Result<Gridded> {
     let place = case.path.display().to_string();
     let groups = topo.groups(&place)?;
     case.topology_nodes()?;
+    let bar = progress_bar(topo.blocks.len());
     let done: Vec<Vec<(usize, Block, BlockReport)>> = groups
         .par_iter()
-        .map(|g| grid_group(case, topo, g))
+        .map(|g| {
+            let r = grid_group(case, topo, g);
+            if let Some(b) = &bar {
+                b.inc(g.pieces.len() as u64);
+            }
+            r
+        })
         .collect::<Result<_>>()?;
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
     let mut slots: Vec<Option<(Block, BlockReport)>> =
         (0..topo.blocks.len()).map(|_| None).collect();
     for (b, block, rep) in done.into_iter().flatten() {
@@ -79,6 +89,22 @@ pub(super) fn generate(case: &LoadedCase, topo: &Topology) -> Result<Gridded> {
         reports,
         interfaces,
     })
+}
+
+/// A terminal progress bar over the `n` blocks of a topology, if progress is on (not
+/// `--quiet`) and stderr is a terminal.
+fn progress_bar(n: usize) -> Option<indicatif::ProgressBar> {
+    use std::io::IsTerminal;
+    if !crate::elliptic::volume::progress_enabled() || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let pb = indicatif::ProgressBar::new(n as u64);
+    pb.set_style(
+        indicatif::ProgressStyle::with_template("blocks {bar:30} {pos}/{len} [{elapsed}]")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    pb.enable_steady_tick(std::time::Duration::from_millis(200));
+    Some(pb)
 }
 
 /// Grids one group and cuts it into its blocks.
