@@ -4,7 +4,7 @@
 mod common;
 use common::*;
 use ellipgrid::io::Block;
-use ellipgrid::plot::{write_picture, Plane, PlotOptions, View};
+use ellipgrid::plot::{write_picture, Marks, Plane, PlotOptions, View};
 use ellipgrid::Grid2;
 use std::path::Path;
 
@@ -217,4 +217,94 @@ fn volume_planes_views_and_library_entry() {
         ..PlotOptions::default()
     };
     assert!(write_picture(&p, &[("g".into(), Block::Planar(g))], &bad).is_err());
+}
+
+#[test]
+fn blocks_in_colours_and_the_topology_of_a_multi_block_case() {
+    let d = tmp();
+    let case = root().join("examples/naca0012_ogrid.toml");
+    let c = case.to_str().unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "plot",
+            c,
+            "-o",
+            "t.svg",
+            "--blocks",
+            "--topology",
+            "--size",
+            "800x600",
+            "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let t = std::fs::read_to_string(d.path().join("t.svg")).unwrap();
+    // Every vertex and edge is named (8 vertices, 12 edges), and the legend names the blocks.
+    for name in [
+        "te",
+        "le",
+        "up",
+        "lo",
+        "far_te",
+        "far_up",
+        "cut_te",
+        "cut_lo",
+        "upper_fore",
+        "far_4",
+        "lower_aft",
+    ] {
+        assert!(t.contains(&format!(">{name}</text>")), "{name} not drawn");
+    }
+    assert_eq!(t.matches("</text>").count(), 8 + 12 + 4);
+    // The cells of the four blocks are filled with four colours.
+    let fills: std::collections::BTreeSet<&str> = t
+        .lines()
+        .filter(|l| l.starts_with("<polygon"))
+        .filter_map(|l| l.split("fill=\"").nth(1)?.get(..7))
+        .collect();
+    assert_eq!(fills.len(), 4, "{fills:?}");
+    let o = ellipgrid(
+        d.path(),
+        &["plot", c, "-o", "t.png", "--blocks", "--topology", "-q"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+
+    // The library: vertices where the case puts them, edges from vertex to vertex.
+    let loaded = ellipgrid::case::LoadedCase::read(&case).unwrap();
+    let g = ellipgrid::job::generate(&loaded, |_| {}).unwrap();
+    let m = Marks::topology(g.topology.as_ref().unwrap(), &g.blocks);
+    let at = |n: &str| m.points.iter().find(|(v, _)| v == n).unwrap().1;
+    for (n, p) in [
+        ("te", [1.0, 0.0]),
+        ("le", [0.0, 0.0]),
+        ("far_up", [0.5, 10.0]),
+    ] {
+        let q = at(n);
+        assert!(
+            (q[0] - p[0]).abs() < 1e-9 && (q[1] - p[1]).abs() < 1e-9,
+            "{n}: {q:?}"
+        );
+    }
+    let (_, cut) = m.lines.iter().find(|(e, _)| e == "cut_te").unwrap();
+    assert_eq!(cut.len(), 49);
+    assert_eq!((cut[0], cut[48]), (at("te"), at("far_te")));
+
+    // Bad requests exit 2 and write nothing: --topology of a Plot3D file, --blocks with --color.
+    let o = ellipgrid(d.path(), &["run", "-q", c, "-o", "g.x"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let o = ellipgrid(d.path(), &["plot", "g.x", "-o", "x.png", "--topology"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("g.x") && text(&o).contains("--topology"));
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "plot", "g.x", "-o", "x.png", "--blocks", "--color", "aspect",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(!d.path().join("x.png").exists());
+    // Block colours of a plain Plot3D file (blocks named by the file).
+    let o = ellipgrid(d.path(), &["plot", "g.x", "-o", "b.png", "--blocks", "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
 }

@@ -42,7 +42,7 @@ fn grid(s: &dyn Surface, di: &DistributionSpec) -> Grid2<3> {
         s,
         (33, 25),
         di,
-        &DistributionSpec::Uniform,
+        &DistributionSpec::Uniform {},
         &mut DirectLu::new(),
         "test",
     )
@@ -77,7 +77,7 @@ fn bspline_written_read_and_gridded_equals_the_original_grid() {
     assert_eq!(read.degrees(), (3, 3));
     let original = BSplineSurf::from_truck_bspline(&b).unwrap();
     for di in [
-        DistributionSpec::Uniform,
+        DistributionSpec::Uniform {},
         DistributionSpec::Vinokur {
             first: Some(0.01),
             last: Some(0.05),

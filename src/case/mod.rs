@@ -9,6 +9,7 @@ use crate::grid::Edge;
 use crate::{Error, Result};
 use ellipgrid_geometry::{self as geo, Curve, Vec3};
 
+pub mod limits;
 pub mod spec;
 pub mod surface;
 pub mod topology;
@@ -32,6 +33,16 @@ pub struct LoadedCase {
     nodes: OnceLock<Vec<Vec<Vec3>>>,
 }
 
+/// An edge's node count within [`limits::MAX_NODES`] (so that chains of edges add up without
+/// overflow).
+fn budget_edge(place: &str, name: &str, n: usize) -> Result<()> {
+    limits::Budget::default().add(
+        &format!("{place}: edge '{name}'"),
+        &[n],
+        limits::BYTES_PER_NODE_2D,
+    )
+}
+
 impl LoadedCase {
     /// Reads and parses a case file.
     pub fn read(path: &Path) -> Result<Self> {
@@ -50,7 +61,39 @@ impl LoadedCase {
             ));
         }
         let place = path.display().to_string();
+        case.solver
+            .picard
+            .check()
+            .map_err(|m| Error::input(format!("{place}: [solver]"), m))?;
+        let mut budget = limits::Budget::default();
+        for e in &case.edges {
+            // before the topology sums chains of edges
+            budget_edge(&place, &e.name, e.n)?;
+        }
         let topology = topology::build(&case, &place)?;
+        match &topology {
+            Some(t) => {
+                for (b, blk) in t.blocks.iter().enumerate() {
+                    let at = format!("{place}: block '{}'", blk.name);
+                    budget.add(&at, &t.dims(b), limits::BYTES_PER_NODE_2D)?;
+                }
+            }
+            None => {
+                for (k, b) in case.blocks.iter().enumerate() {
+                    if let (Some(ni), Some(nj)) = (b.ni, b.nj) {
+                        let name = b.name.clone().unwrap_or_else(|| format!("block{}", k + 1));
+                        let at = format!("{place}: block '{name}'");
+                        budget.add(&at, &[ni, nj], limits::BYTES_PER_NODE_2D)?;
+                    }
+                }
+            }
+        }
+        for (k, v) in case.volumes.iter().enumerate() {
+            let name = v.name.clone().unwrap_or_else(|| format!("volume{}", k + 1));
+            let at = format!("{place}: volume '{name}'");
+            budget.add(&at, &[v.ni, v.nj, v.nk], limits::BYTES_PER_NODE_3D)?;
+        }
+        budget.check_memory(&place)?;
         if topology.is_none() {
             for (k, b) in case.blocks.iter().enumerate() {
                 let name = b.name.clone().unwrap_or_else(|| format!("block{}", k + 1));
@@ -200,7 +243,7 @@ impl LoadedCase {
             return Err(Error::input(at, "the edge needs a curve = { type = ... }"));
         };
         if let CurveSpec::Nodes { points } = curve_spec {
-            if !matches!(spec.distribution, DistributionSpec::Uniform) {
+            if !matches!(spec.distribution, DistributionSpec::Uniform {}) {
                 return Err(Error::input(at, "a 'nodes' edge takes no distribution"));
             }
             let mut p = points

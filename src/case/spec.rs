@@ -282,12 +282,15 @@ fn both() -> String {
 
 /// Node distribution along an edge. Spacings are lengths along the curve, at the edge's
 /// first node (`first`) and last node (`last`) in index order.
-#[derive(Clone, Debug, Default, Deserialize)]
+///
+/// Every variant is a struct variant (`Uniform {}`): serde lets a unit variant of an
+/// internally tagged enum accept any keys, and unknown keys must be errors
+/// (`{ type = "uniform", first = 1e-4 }` would silently ignore the spacing).
+#[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum DistributionSpec {
     /// Equal arclength spacing.
-    #[default]
-    Uniform,
+    Uniform {},
     /// Geometric growth from the first spacing.
     Geometric { first: f64 },
     /// Vinokur's one- or two-sided stretching hitting the given spacings exactly.
@@ -295,6 +298,12 @@ pub enum DistributionSpec {
         first: Option<f64>,
         last: Option<f64>,
     },
+}
+
+impl Default for DistributionSpec {
+    fn default() -> Self {
+        DistributionSpec::Uniform {}
+    }
 }
 
 impl DistributionSpec {
@@ -315,7 +324,7 @@ impl DistributionSpec {
             }
         };
         let dist = match self {
-            DistributionSpec::Uniform => geo::Distribution::Uniform,
+            DistributionSpec::Uniform {} => geo::Distribution::Uniform,
             DistributionSpec::Geometric { first } => geo::Distribution::Geometric {
                 first: rel(*first, "first")?,
             },
@@ -353,8 +362,9 @@ pub enum SurfaceSpec {
         du: Vec<f64>,
         dv: Vec<f64>,
     },
-    /// The paper's z = (1/8) tanh(15 (1/4 − (x−1)² − (y−1)²)) over (x, y) ∈ [0, 2]².
-    TanhBump,
+    /// The paper's z = (1/8) tanh(15 (1/4 − (x−1)² − (y−1)²)) over (x, y) ∈ [0, 2]² (a struct
+    /// variant so that unknown keys are errors, see [`DistributionSpec`]).
+    TanhBump {},
     /// Scherk's minimal surface z = ln(cos y / cos x) over [−a, a]².
     Scherk { half_width: f64 },
 }

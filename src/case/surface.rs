@@ -59,13 +59,13 @@ impl LoadedCase {
                 nj: Some(nj),
                 points: Some(points),
             } => {
-                if points.len() != ni * nj {
+                // ni × nj overflow-safe: 2³² × 2³² must not wrap to a count that matches
+                if ni.checked_mul(*nj) != Some(points.len()) {
                     return Err(Error::input(
                         place,
                         format!(
-                            "hermite_net: {} points given, ni × nj = {}",
+                            "hermite_net: {} points given, ni × nj = {ni} × {nj}",
                             points.len(),
-                            ni * nj
                         ),
                     ));
                 }
@@ -87,7 +87,7 @@ impl LoadedCase {
                 du: point(du, &place, "du")?,
                 dv: point(dv, &place, "dv")?,
             }),
-            SurfaceSpec::TanhBump => Box::new(geo::TanhBump::default()),
+            SurfaceSpec::TanhBump {} => Box::new(geo::TanhBump::default()),
             SurfaceSpec::Scherk { half_width } => {
                 Box::new(geo::Scherk::new(*half_width).map_err(geo_err)?)
             }
@@ -113,7 +113,7 @@ impl LoadedCase {
                     edge_params(surface.as_ref(), e, &sigma)
                 }
                 (Some(crate::case::CurveSpec::Nodes { points }), false)
-                    if matches!(spec.distribution, crate::case::DistributionSpec::Uniform) =>
+                    if matches!(spec.distribution, crate::case::DistributionSpec::Uniform {}) =>
                 {
                     project_nodes(surface.as_ref(), e, points, n, &at)?
                 }

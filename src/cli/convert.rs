@@ -65,6 +65,8 @@ pub struct Loaded {
     pub blocks: Vec<(String, Block)>,
     pub format: Option<Plot3dFormat>,
     pub iblank: Option<Vec<Vec<i32>>>,
+    /// The multi-block topology of a case file.
+    pub topology: Option<ellipgrid::grid::topology::Topology>,
 }
 
 /// Reads a grid input: a case file (`.toml`, gridded now; a folded grid is an error unless
@@ -93,6 +95,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
             blocks: gen.blocks,
             format: None,
             iblank: None,
+            topology: gen.topology,
         });
     }
     if ext == "vts" || ext == "vtm" {
@@ -109,6 +112,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
             blocks,
             format: None,
             iblank: None,
+            topology: None,
         });
     }
     if matches!(ext.as_str(), "glb" | "gltf" | "obj" | "png" | "svg") {
@@ -129,6 +133,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
         blocks,
         format: Some(file.format),
         iblank: file.iblank,
+        topology: None,
     })
 }
 

@@ -156,6 +156,9 @@ pub fn main() -> ExitCode {
                 },
                 ..SmoothOptions::default()
             };
+            opts.picard
+                .check()
+                .map_err(|m| ellipgrid::Error::input("--tolerance", m))?;
             smooth(
                 &input,
                 &output,

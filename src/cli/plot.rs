@@ -1,7 +1,7 @@
 //! `ellipgrid plot GRID -o fig.png|fig.svg`: a picture of a grid (see `ellipgrid::plot`).
 
 use clap::Args;
-use ellipgrid::plot::{self, Plane, PlotOptions, View};
+use ellipgrid::plot::{self, Marks, Plane, PlotOptions, View};
 use ellipgrid::{Error, Result};
 use std::path::PathBuf;
 
@@ -32,6 +32,13 @@ pub struct PlotArgs {
     /// Draw one grid plane of volume blocks (0-based): i=I, j=J or k=K.
     #[arg(long, value_name = "k=K")]
     plane: Option<String>,
+    /// Fill every block with its own colour, with a legend of block names.
+    #[arg(long)]
+    blocks: bool,
+    /// Draw the topology of a multi-block case (a .toml with [[vertex]] and [[edge]] tables):
+    /// every edge with its name, every vertex with its name.
+    #[arg(long)]
+    topology: bool,
     /// Print only errors.
     #[arg(short, long)]
     quiet: bool,
@@ -101,9 +108,27 @@ pub fn plot(a: &PlotArgs) -> Result<()> {
         color,
         view,
         plane,
+        blocks: a.blocks,
     };
+    if a.blocks && opts.color.is_some() {
+        return Err(bad(
+            "--blocks",
+            "fills the blocks with colours: use it or --color, not both".into(),
+        ));
+    }
     let input = load(&a.grid, true, a.quiet)?;
-    plot::write_picture(&a.output, &input.blocks, &opts)?;
+    let marks = match (a.topology, &input.topology) {
+        (false, _) => Marks::default(),
+        (true, Some(t)) => Marks::topology(t, &input.blocks),
+        (true, None) => {
+            return Err(Error::input(
+                a.grid.display().to_string(),
+                "--topology needs a multi-block case file (.toml with [[vertex]] and [[edge]] \
+                 tables)",
+            ))
+        }
+    };
+    plot::write_picture_marked(&a.output, &input.blocks, &opts, &marks)?;
     if !a.quiet {
         println!("wrote {}", a.output.display());
     }

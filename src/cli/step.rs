@@ -124,7 +124,7 @@ fn list(file: &Path) -> Result<()> {
 
 fn spacing(first: Option<f64>, last: Option<f64>) -> DistributionSpec {
     match (first, last) {
-        (None, None) => DistributionSpec::Uniform,
+        (None, None) => DistributionSpec::Uniform {},
         _ => DistributionSpec::Vinokur { first, last },
     }
 }
@@ -163,6 +163,16 @@ fn grid(a: &GridArgs) -> Result<()> {
             ok
         }
     };
+    let mut budget = ellipgrid::case::limits::Budget::default();
+    for f in &chosen {
+        let at = format!("{name}: face {} (--ni, --nj)", f.index);
+        budget.add(
+            &at,
+            &[a.ni, a.nj],
+            ellipgrid::case::limits::BYTES_PER_NODE_2D,
+        )?;
+    }
+    budget.check_memory(&format!("{name} (--ni, --nj)"))?;
     let (di, dj) = (spacing(a.first_i, a.last_i), spacing(a.first_j, a.last_j));
     let mut solver = solve::select::by_name(&a.linear).map_err(|m| Error::input("--linear", m))?;
     let mut blocks = Vec::new();

@@ -29,8 +29,10 @@
 //! without nesting).
 //!
 //! Measured (`examples/bench_grid.rs`, curved domain): 3 Picard steps on the finest grid at
-//! 257² and 513², 2 at 1025², against 11 for plain Picard (4 against 6 on the boundary layer
-//! of aspect ratio 1.5e4); the grids agree with plain Picard's to 1.1e-10 of the diameter.
+//! 257²–1025², against 11 for plain Picard (4 against 6 on the boundary layer of aspect ratio
+//! 1.5e4); the grids agree with plain Picard's to 1.1e-10 of the diameter. (Two steps would
+//! do at 1025², but the stop needs two ratios of successive updates: after a prediction the
+//! first ratio says nothing of the contraction, see `picard::error_estimate`.)
 //!
 //! # Work units
 //! A work unit (WU) is the time of one evaluation of the residual of [24] with its assembly

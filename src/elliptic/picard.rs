@@ -59,7 +59,45 @@ impl Default for PicardParams {
     }
 }
 
+/// Most Picard steps, linear iterations per solve, and Anderson depth a setting may ask for.
+pub const MAX_STEPS: usize = 100_000;
+/// Largest Anderson depth accepted.
+pub const MAX_ANDERSON: usize = 50;
+
 impl PicardParams {
+    /// Checks every setting (finite and in range); the message names the key and its value.
+    ///
+    /// # Errors
+    /// The message for the first bad setting.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let open01 = |key: &str, v: f64| {
+            if v.is_finite() && v > 0.0 && v < 1.0 {
+                Ok(())
+            } else {
+                Err(format!("{key} = {v}: must be a number in (0, 1)"))
+            }
+        };
+        let count = |key: &str, v: usize, lo: usize, hi: usize| {
+            if (lo..=hi).contains(&v) {
+                Ok(())
+            } else {
+                Err(format!("{key} = {v}: must be {lo} to {hi}"))
+            }
+        };
+        open01("tolerance", self.tolerance)?;
+        open01("linear_tolerance", self.linear_tolerance)?;
+        count("max_steps", self.max_steps, 1, MAX_STEPS)?;
+        count("linear_max_iter", self.linear_max_iter, 1, MAX_STEPS)?;
+        count("anderson", self.anderson, 0, MAX_ANDERSON)?;
+        let f = self.linear_forcing;
+        if !(f.is_finite() && (0.0..1.0).contains(&f)) {
+            return Err(format!(
+                "linear_forcing = {f}: must be a number in [0, 1) (0: no forcing)"
+            ));
+        }
+        Ok(())
+    }
+
     /// Whether nested iteration is used with the linear solver called `solver_name`.
     pub fn nested_for(&self, solver_name: &str) -> bool {
         self.nested.unwrap_or(solver_name == "multigrid")
@@ -227,6 +265,7 @@ pub(crate) fn run<S: System>(
         eval_secs = eval_secs.min(t0.elapsed().as_secs_f64());
         res
     };
+    params.check().map_err(|m| Error::input(place, m))?;
     let diam = sys.diameter();
     let mut anderson = (params.anderson > 0).then(|| Anderson::new(params.anderson));
     // largest applied step (relative) of the last step: the operator changed that much
@@ -437,7 +476,8 @@ fn step_record(
 /// Picard contraction — measured: an estimate of 1e-10 for a true error of 8e-10), the a-posteriori
 /// bound of a contraction ρ/(1 − ρ) u plus the error η u of the inexact step (η its largest
 /// relative linear residual). With the contraction of 0.01–0.04 seen after nested iteration
-/// this saves the last Picard step, whose update would only confirm what the estimate says.
+/// this saves the last Picard step, whose update would only confirm what the estimate says
+/// (from the third step on).
 pub(crate) fn error_estimate(history: &[PicardStep]) -> f64 {
     match history {
         [.., z, a, b] if z.update > 0.0 && a.update > 0.0 && b.update < 0.5 * a.update => {

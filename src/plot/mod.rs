@@ -14,6 +14,8 @@
 //! The entry point is [`write_picture`]; the format follows the file extension.
 
 mod canvas;
+mod marks;
+pub use marks::Marks;
 
 use std::path::Path;
 
@@ -98,6 +100,8 @@ pub struct PlotOptions {
     pub view: Option<View>,
     /// Draw this grid plane of volume blocks instead of their faces.
     pub plane: Option<Plane>,
+    /// Fill every block with its own colour, with a legend of block names.
+    pub blocks: bool,
 }
 
 impl Default for PlotOptions {
@@ -108,6 +112,7 @@ impl Default for PlotOptions {
             color: None,
             view: None,
             plane: None,
+            blocks: false,
         }
     }
 }
@@ -117,6 +122,17 @@ pub const MAX_SIDE: u32 = 16384;
 
 /// Draws `blocks` into `path` (`.png` or `.svg`), atomically.
 pub fn write_picture(path: &Path, blocks: &[(String, Block)], opts: &PlotOptions) -> Result<()> {
+    write_picture_marked(path, blocks, opts, &Marks::default())
+}
+
+/// [`write_picture`] with `marks` (a multi-block topology, [`Marks::topology`]) drawn over the
+/// grid.
+pub fn write_picture_marked(
+    path: &Path,
+    blocks: &[(String, Block)],
+    opts: &PlotOptions,
+    marks: &Marks,
+) -> Result<()> {
     let bad = |msg: String| Error::input(path.display().to_string(), msg);
     let ext = path
         .extension()
@@ -129,7 +145,12 @@ pub fn write_picture(path: &Path, blocks: &[(String, Block)], opts: &PlotOptions
             "picture size {w}x{h}: each side must be 16 to {MAX_SIDE}"
         )));
     }
-    let scene = Scene::new(blocks, opts).map_err(bad)?;
+    if opts.blocks && opts.color.is_some() {
+        return Err(bad(
+            "block colours and a quality metric's colours cannot be drawn together".into(),
+        ));
+    }
+    let scene = Scene::new(blocks, opts, marks).map_err(bad)?;
     match ext.as_str() {
         "png" => {
             let mut c =
@@ -154,6 +175,7 @@ struct Cell {
     depth: f64,
     value: f64,
     boundary: [bool; 4],
+    block: usize,
 }
 
 /// A patch's size (ni, nj) and projected nodes.
@@ -167,10 +189,17 @@ struct Scene {
     /// Fill cells and sort them (else: grid lines only).
     painter: bool,
     bbox: [f64; 4],
+    /// Block names (for the legend of block colours).
+    names: Vec<String>,
+    marks: marks::Projected2,
 }
 
 impl Scene {
-    fn new(blocks: &[(String, Block)], opts: &PlotOptions) -> std::result::Result<Scene, String> {
+    fn new(
+        blocks: &[(String, Block)],
+        opts: &PlotOptions,
+        marks: &Marks,
+    ) -> std::result::Result<Scene, String> {
         if blocks.is_empty() {
             return Err("no blocks to draw".into());
         }
@@ -182,7 +211,8 @@ impl Scene {
             return Err("--plane needs a volume block (this grid has none)".into());
         }
         let mut patches = Vec::new();
-        for (name, b) in blocks {
+        let mut owner = Vec::new();
+        for (k, (name, b)) in blocks.iter().enumerate() {
             let ps = match (b, opts.plane) {
                 (Block::Volume(g), Some(pl)) => {
                     let [ni, nj, nk] = g.dims();
@@ -208,12 +238,13 @@ impl Scene {
             if !ps.iter().all(Patch::all_finite) {
                 return Err(format!("block '{name}': non-finite coordinates"));
             }
+            owner.extend(std::iter::repeat_n(k, ps.len()));
             patches.extend(ps);
         }
-        let painter = opts.color.is_some() || !(all_planar && view == View::Xy);
+        let painter = opts.color.is_some() || opts.blocks || !(all_planar && view == View::Xy);
         let mut cells = Vec::new();
         let mut projected = Vec::new();
-        for p in &patches {
+        for (p, &block) in patches.iter().zip(&owner) {
             let proj: Vec<(f64, f64, f64)> = p.points.iter().map(|&q| view.project(q)).collect();
             if painter {
                 let values = match opts.color {
@@ -230,6 +261,7 @@ impl Scene {
                         depth,
                         value: values.get(c).copied().unwrap_or(f64::NAN),
                         boundary: [j == 0, i + 1 == ci, j + 1 == cj, i == 0],
+                        block,
                     });
                 }
             }
@@ -256,11 +288,29 @@ impl Scene {
         if !bbox.iter().all(|v| v.is_finite()) {
             return Err("the grid has no nodes".into());
         }
+        let flat = |q: &[f64; 3]| {
+            let (x, y, _) = view.project(*q);
+            (x, y)
+        };
+        let marks = (
+            marks
+                .lines
+                .iter()
+                .map(|(n, l)| (n.clone(), l.iter().map(flat).collect()))
+                .collect(),
+            marks
+                .points
+                .iter()
+                .map(|(n, p)| (n.clone(), flat(p)))
+                .collect(),
+        );
         Ok(Scene {
             patches: projected,
             cells,
             painter,
             bbox,
+            names: blocks.iter().map(|(n, _)| n.clone()).collect(),
+            marks,
         })
     }
 
@@ -268,7 +318,7 @@ impl Scene {
         let (w, h) = (opts.size.0 as f64, opts.size.1 as f64);
         let s = w.min(h);
         let margin = (0.04 * s).max(8.0);
-        let legend_w = if opts.color.is_some() {
+        let legend_w = if opts.color.is_some() || opts.blocks {
             (0.2 * w).max(130.0)
         } else {
             0.0
@@ -318,6 +368,7 @@ impl Scene {
             for cell in cells {
                 let fill = match opts.color {
                     Some(_) => rgb(colormap((cell.value - lo) / (hi - lo))),
+                    None if opts.blocks => marks::block_colour(cell.block),
                     None => Rgb(255, 255, 255),
                 };
                 let pts = cell.pts.map(tf);
@@ -352,7 +403,12 @@ impl Scene {
                 c.polyline(&b, bound, thick);
             }
         }
+        marks::draw(c, &self.marks, &tf, s);
         c.unclip();
+        if opts.blocks {
+            let r = [w - legend_w, margin, w - margin, h - margin];
+            marks::block_legend(c, &self.names, r);
+        }
         if let Some(m) = opts.color {
             self.legend(
                 c,

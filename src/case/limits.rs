@@ -1,0 +1,143 @@
+//! Size limits, checked before anything is allocated: node counts with overflow-safe
+//! arithmetic, an absolute cap, and the memory a job will need against the memory the
+//! machine has ("this grid needs ~N GB, the machine has M GB available").
+//!
+//! The memory estimate uses the measured peak of a generation per node (about 640 bytes in 2D
+//! and 1.8 KB in 3D, issue #16), rounded up. The available memory is `MemAvailable` of
+//! `/proc/meminfo`, or the environment variable `ELLIPGRID_MEMORY_GB` when set (to allow
+//! more, or less, than the machine reports); without either only the absolute cap applies.
+
+use crate::{Error, Result};
+
+/// At most this many nodes in one job (all blocks together): 2³¹.
+pub const MAX_NODES: u64 = 1 << 31;
+
+/// Peak bytes per node of a 2D block's generation (planar or surface), rounded up.
+pub const BYTES_PER_NODE_2D: u64 = 700;
+
+/// Peak bytes per node of a volume block's generation, rounded up.
+pub const BYTES_PER_NODE_3D: u64 = 2_000;
+
+/// The environment variable that overrides the available memory (gigabytes).
+pub const MEMORY_VAR: &str = "ELLIPGRID_MEMORY_GB";
+
+/// Bytes per node of a finished grid kept until it is written (three f64 coordinates).
+pub const KEPT_BYTES_PER_NODE: u64 = 24;
+
+/// What the blocks of a job add up to. Blocks are generated up to one per thread at a time
+/// and kept until written, so the memory estimate is (threads × the largest block's peak) +
+/// (every node × [`KEPT_BYTES_PER_NODE`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Budget {
+    /// Nodes of all blocks.
+    pub nodes: u64,
+    /// Blocks added.
+    pub blocks: u64,
+    /// Peak bytes of the largest block's generation.
+    pub largest: u64,
+}
+
+impl Budget {
+    /// Adds a block of `dims` nodes at `bytes_per_node`.
+    ///
+    /// # Errors
+    /// [`Error::Input`] at `place` if a dimension is zero-sized in a product that overflows,
+    /// or the job passes [`MAX_NODES`].
+    pub fn add(&mut self, place: &str, dims: &[usize], bytes_per_node: u64) -> Result<()> {
+        let shown: Vec<String> = dims.iter().map(usize::to_string).collect();
+        let too_many = || {
+            Error::input(
+                place,
+                format!(
+                    "{} nodes: more than the {MAX_NODES} nodes a job may have",
+                    shown.join(" × ")
+                ),
+            )
+        };
+        let n = dims
+            .iter()
+            .try_fold(1u64, |acc, &d| acc.checked_mul(d as u64))
+            .filter(|&n| n <= MAX_NODES)
+            .ok_or_else(too_many)?;
+        self.nodes = self
+            .nodes
+            .checked_add(n)
+            .filter(|&t| t <= MAX_NODES)
+            .ok_or_else(too_many)?;
+        self.blocks += 1;
+        self.largest = self.largest.max(n.saturating_mul(bytes_per_node));
+        Ok(())
+    }
+
+    /// The estimated peak memory of the job (see [`Budget`]), in bytes.
+    pub fn bytes(&self) -> u64 {
+        let threads = rayon::current_num_threads() as u64;
+        self.largest
+            .saturating_mul(threads.min(self.blocks).max(1))
+            .saturating_add(self.nodes.saturating_mul(KEPT_BYTES_PER_NODE))
+    }
+
+    /// Checks the estimated memory against the memory available.
+    ///
+    /// # Errors
+    /// [`Error::Input`] at `place`, with both figures, if the job would not fit.
+    pub fn check_memory(&self, place: &str) -> Result<()> {
+        let Some(avail) = available_memory() else {
+            return Ok(());
+        };
+        let bytes = self.bytes();
+        if bytes > avail {
+            return Err(Error::input(
+                place,
+                format!(
+                    "this grid ({} nodes) needs ~{:.3} GB, the machine has {:.3} GB available \
+                     (set {MEMORY_VAR} to override)",
+                    self.nodes,
+                    gb(bytes),
+                    gb(avail)
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+fn gb(bytes: u64) -> f64 {
+    bytes as f64 / 1e9
+}
+
+/// The memory available to a job, in bytes: [`MEMORY_VAR`] if set (gigabytes), else
+/// `MemAvailable` of `/proc/meminfo`, else unknown.
+pub fn available_memory() -> Option<u64> {
+    if let Ok(v) = std::env::var(MEMORY_VAR) {
+        if let Ok(g) = v.trim().parse::<f64>() {
+            if g.is_finite() && g > 0.0 {
+                return Some((g * 1e9) as u64);
+            }
+        }
+    }
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kb.checked_mul(1024)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overflowing_and_huge_counts_are_errors_not_panics() {
+        let mut b = Budget::default();
+        assert!(b.add("x", &[usize::MAX, usize::MAX], 700).is_err());
+        assert!(b.add("x", &[1 << 32, 1 << 32], 700).is_err());
+        assert!(b.add("x", &[1 << 20, 1 << 10], 700).is_ok());
+        assert!(b.add("x", &[1 << 20, 1 << 10], 700).is_ok());
+        let e = b.add("x", &[2, 2], 700).unwrap_err().to_string();
+        assert!(e.contains("2 × 2 nodes: more than the 2147483648"), "{e}");
+        assert_eq!((b.nodes, b.blocks), (MAX_NODES, 2));
+        assert_eq!(b.largest, (MAX_NODES / 2) * 700);
+        let threads = rayon::current_num_threads().min(2) as u64;
+        assert_eq!(b.bytes(), threads * (MAX_NODES / 2) * 700 + MAX_NODES * 24);
+    }
+}

@@ -1,0 +1,158 @@
+//! Malformed settings and sizes (issue #17): every numeric [solver] setting is checked
+//! (finite, in range), unknown keys are errors everywhere, including in tables whose type
+//! takes no keys, and node counts are checked (overflow-safe, an absolute cap, the memory the
+//! job needs against the memory available) before anything is allocated. Each case exits 2
+//! with a message naming the file and the key or block, without a panic and without writing
+//! anything.
+
+mod common;
+use common::*;
+use std::fs;
+
+/// Runs `case` and checks exit 2, the `needles` in the message, no panic, no file left.
+fn rejects(case: &str, needles: &[&str]) {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("bad.toml"), case).unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &["run", "bad.toml", "-o", "out.x", "--report", "r.json"],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    for n in needles {
+        assert!(t.contains(n), "message lacks '{n}': {t}");
+    }
+    assert!(!t.contains("panicked"), "{t}");
+    let left: Vec<_> = fs::read_dir(d.path()).unwrap().collect();
+    assert_eq!(left.len(), 1, "files written: {left:?}");
+}
+
+#[test]
+fn solver_settings_out_of_range_exit_2_naming_the_key() {
+    let base = square_case(5, 5);
+    for (setting, key) in [
+        ("linear_forcing = nan", "linear_forcing"),
+        ("linear_forcing = -0.5", "linear_forcing"),
+        ("linear_forcing = 1.5", "linear_forcing"),
+        ("tolerance = nan", "tolerance"),
+        ("tolerance = -1e-10", "tolerance"),
+        ("tolerance = 0.0", "tolerance"),
+        ("tolerance = inf", "tolerance"),
+        ("linear_tolerance = 2.0", "linear_tolerance"),
+        ("max_steps = 0", "max_steps"),
+        ("max_steps = 1000000000000", "max_steps"),
+        ("linear_max_iter = 0", "linear_max_iter"),
+        ("anderson = 1000", "anderson"),
+    ] {
+        let case = format!("{base}\n[solver]\n{setting}\n");
+        rejects(&case, &["bad.toml", "[solver]", key]);
+    }
+    // In range: accepted.
+    let d = tempfile::tempdir().unwrap();
+    let case = format!("{base}\n[solver]\nlinear_forcing = 0.0\nanderson = 3\ntolerance = 1e-9\n");
+    fs::write(d.path().join("ok.toml"), case).unwrap();
+    let o = ellipgrid(d.path(), &["run", "ok.toml", "-o", "out.x", "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+}
+
+#[test]
+fn smooth_tolerance_is_checked() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("c.toml"), square_case(5, 5)).unwrap();
+    let o = ellipgrid(d.path(), &["run", "c.toml", "-o", "g.x", "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let o = ellipgrid(
+        d.path(),
+        &["smooth", "g.x", "-o", "s.x", "--tolerance", "NaN"],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("tolerance"), "{}", text(&o));
+    assert!(!d.path().join("s.x").exists());
+}
+
+#[test]
+fn unknown_keys_of_key_less_types_are_errors() {
+    // A uniform distribution takes no spacing: the key would be silently ignored.
+    let case = one_block_case(
+        5,
+        5,
+        "curve = { type = \"line\", from = [0, 0], to = [0, 1] }\ndistribution = { type = \"uniform\", first = 1e-4 }",
+        "curve = { type = \"line\", from = [1, 0], to = [1, 1] }",
+        "curve = { type = \"line\", from = [0, 0], to = [1, 0] }",
+        "curve = { type = \"line\", from = [0, 1], to = [1, 1] }",
+    );
+    rejects(&case, &["bad.toml", "first"]);
+    // The tanh bump surface takes no keys.
+    let case = "[[block]]\nname = \"s\"\nkind = \"surface\"\nni = 5\nnj = 5\n\
+                surface = { type = \"tanh_bump\", amplitude = 2 }\n";
+    rejects(case, &["bad.toml", "amplitude"]);
+}
+
+/// `ellipgrid` with the available memory set to `gb` gigabytes.
+fn with_memory(dir: &std::path::Path, gb: &str, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_ellipgrid"))
+        .args(args)
+        .current_dir(dir)
+        .env("ELLIPGRID_MEMORY_GB", gb)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn node_counts_are_checked_before_anything_is_allocated() {
+    // Overflowing and huge counts: a 2D block, an edge of a topology, a volume, an inline
+    // Hermite net whose ni × nj wraps.
+    let huge = square_case(5, 5).replace("nj = 5", "nj = 9223372036854775807");
+    rejects(
+        &huge,
+        &["bad.toml", "block 'b'", "more than the 2147483648 nodes"],
+    );
+    let big = square_case(5, 5)
+        .replace("ni = 5", "ni = 100000")
+        .replace("nj = 5", "nj = 100000");
+    rejects(&big, &["block 'b'", "100000 × 100000 nodes"]);
+    let naca = std::fs::read_to_string(root().join("examples/naca0012_ogrid.toml")).unwrap();
+    let edge = naca.replacen("n = 49", "n = 4611686018427387904", 1);
+    rejects(&edge, &["edge 'cut_te'", "more than the"]);
+    let vol = std::fs::read_to_string(root().join("examples/volume_warped_cube.toml")).unwrap();
+    let vol = vol.replacen("nj = 25", "nj = 1000000000", 1);
+    rejects(&vol, &["volume", "25 × 1000000000 × 25 nodes"]);
+    let net = "[[block]]\nname = \"s\"\nkind = \"surface\"\nni = 5\nnj = 5\n\
+               surface = { type = \"hermite_net\", ni = 4294967296, nj = 4294967296, \
+               points = [[0, 0, 0]] }\n[block.E1]\n[block.E2]\n[block.E3]\n[block.E4]\n";
+    rejects(net, &["1 points given", "4294967296 × 4294967296"]);
+
+    // The memory a job needs against the memory available.
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("c.toml"), square_case(301, 301)).unwrap();
+    let o = with_memory(d.path(), "0.01", &["run", "c.toml", "-o", "g.x"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("c.toml") && t.contains("needs ~") && t.contains("ELLIPGRID_MEMORY_GB"),
+        "{t}"
+    );
+    assert!(!d.path().join("g.x").exists());
+    let o = with_memory(d.path(), "1", &["run", "c.toml", "-o", "g.x", "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+
+    // step grid --ni/--nj: a 30000² face needs ~630 GB.
+    let net = root().join("data/wing_pylon_net.x");
+    let o = ellipgrid(
+        d.path(),
+        &["step", "export", net.to_str().unwrap(), "-o", "net.step"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let o = with_memory(
+        d.path(),
+        "8",
+        &[
+            "step", "grid", "net.step", "--face", "1", "--ni", "30000", "--nj", "30000", "-o",
+            "f.x",
+        ],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(t.contains("needs ~") && t.contains("--ni"), "{t}");
+    assert!(!d.path().join("f.x").exists());
+}
