@@ -58,3 +58,49 @@ fn check_flags_a_folded_plot3d_grid() {
     assert!(text(&o).contains("cell ("));
     assert!(d.path().join("q.json").exists());
 }
+
+#[test]
+fn a_failed_run_leaves_no_output_at_all() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("fold.toml"), folding_case()).unwrap();
+    // The start grid waits for the run: a fold (exit 3) writes neither it nor the grid.
+    let o = ellipgrid(
+        d.path(),
+        &["run", "fold.toml", "-o", "g.x", "--write-start", "start.x"],
+    );
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    assert!(!d.path().join("start.x").exists() && !d.path().join("g.x").exists());
+    // With --allow-folded both are written (exit code still 3).
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "run",
+            "fold.toml",
+            "-o",
+            "g.x",
+            "--write-start",
+            "start.x",
+            "--allow-folded",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    assert!(d.path().join("start.x").exists() && d.path().join("g.x").exists());
+    // An output that fails after an earlier one was written (two blocks do not fit one .vts)
+    // leaves neither, and no temporary file.
+    let e = tempfile::tempdir().unwrap();
+    let two = format!(
+        "{}{}",
+        square_case(5, 5),
+        square_case(5, 5).replace("\"b\"", "\"c\"")
+    );
+    fs::write(e.path().join("two.toml"), two).unwrap();
+    let o = ellipgrid(e.path(), &["run", "two.toml", "-o", "g.x", "-o", "g.vts"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(t.contains("g.vts") && t.contains(".vtm"), "{t}");
+    let left: Vec<_> = fs::read_dir(e.path())
+        .unwrap()
+        .map(|f| f.unwrap().file_name())
+        .collect();
+    assert_eq!(left, vec![std::ffi::OsString::from("two.toml")], "{left:?}");
+}

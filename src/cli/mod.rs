@@ -210,42 +210,55 @@ fn run(
     let fmt = job::plot3d_format(&case)?;
     if let Some(p) = write_start {
         job::output_kind(p)?;
-        let written = job::write_outputs(&job::start_grids(&case)?, &[p.to_path_buf()], &fmt)?;
-        if !quiet {
-            for p in &written {
-                println!("wrote start grid {}", p.display());
+    }
+    // The start grid and the outputs are renamed into place together, at the end, and only
+    // if the run succeeds (or folds with --allow-folded): a failed run leaves no grid. The
+    // JSON report is written either way (it says why the run failed).
+    let mut messages = Vec::new();
+    let mut gen = None;
+    let staged = ellipgrid::io::staged(|| {
+        if let Some(p) = write_start {
+            let start = job::start_grids(&case)?;
+            for w in job::write_outputs(&start, &[p.to_path_buf()], &fmt)? {
+                messages.push(format!("wrote start grid {}", w.display()));
             }
         }
-    }
-    ellipgrid::elliptic::volume::set_progress(!quiet);
-    let mut gen = job::generate(&case, |b| {
+        ellipgrid::elliptic::volume::set_progress(!quiet);
+        let g = gen.insert(job::generate(&case, |b| {
+            if !quiet {
+                print::block(b);
+            }
+        })?);
         if !quiet {
-            print::block(b);
+            g.report.volumes.iter().for_each(print::volume);
+            print::interfaces(&g.report.interfaces);
         }
-    })?;
+        let fold = g.report.fold_error();
+        match fold {
+            Some(e) if !allow_folded => return Err(e),
+            _ => {}
+        }
+        let written = job::write_outputs_with(&g.blocks, g.topology.as_ref(), &paths, &fmt)?;
+        g.report.outputs = written.iter().map(|p| p.display().to_string()).collect();
+        messages.extend(written.iter().map(|p| format!("wrote {}", p.display())));
+        Ok(fold)
+    });
     if !quiet {
-        gen.report.volumes.iter().for_each(print::volume);
-        print::interfaces(&gen.report.interfaces);
+        messages.iter().for_each(|m| println!("{m}"));
     }
-    let fold = gen.report.fold_error();
-    if fold.is_none() || allow_folded {
-        let written = job::write_outputs_with(&gen.blocks, gen.topology.as_ref(), &paths, &fmt)?;
-        gen.report.outputs = written.iter().map(|p| p.display().to_string()).collect();
-        if !quiet {
-            for p in &written {
-                println!("wrote {}", p.display());
-            }
-        }
-    }
+    let Some(gen) = gen else {
+        return staged.map(|_| ());
+    };
     if let Some(r) = report {
         write_json(r, &gen.report)?;
     }
     if !quiet {
         print::not_converged(&gen.report);
     }
-    match fold {
-        Some(e) => Err(e),
-        None => Ok(()),
+    match staged {
+        Ok(Some(fold)) => Err(fold),
+        Ok(None) => Ok(()),
+        Err(e) => Err(e),
     }
 }
 

@@ -90,9 +90,38 @@ impl From<Grid3> for Block {
     }
 }
 
+thread_local! {
+    /// Files written inside [`staged`] on this thread: (temporary file, final path).
+    static STAGE: std::cell::RefCell<Option<Vec<(tempfile::TempPath, std::path::PathBuf)>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Runs `f` with every [`write_atomic`] of this thread held back: the files are renamed onto
+/// their paths, in the order written, only if `f` succeeds; if it fails, none is, and the
+/// temporary files are removed. A run that fails after its first output thus leaves no
+/// output at all. Stages do not nest: an inner `staged` joins the outer one.
+///
+/// # Errors
+/// The error of `f`, or of a rename.
+pub fn staged<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
+    if STAGE.with(|s| s.borrow().is_some()) {
+        // inside a stage already: the outer one renames or drops
+        return f();
+    }
+    STAGE.with(|s| *s.borrow_mut() = Some(Vec::new()));
+    let r = f();
+    let files = STAGE.with(|s| s.borrow_mut().take()).unwrap_or_default();
+    let value = r?;
+    for (tmp, path) in files {
+        tmp.persist(&path).map_err(|e| Error::io(&path, e.error))?;
+    }
+    Ok(value)
+}
+
 /// Writes a file atomically: `f` writes (buffered) into a temporary file in the directory of
 /// `path`, which is renamed onto `path` only after `f` and the flush succeeded. On any error the
 /// temporary file is removed and `path` is left untouched, so readers never see partial output.
+/// Inside [`staged`] the rename waits for the end of the stage.
 pub fn write_atomic(
     path: &Path,
     f: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
@@ -115,7 +144,16 @@ pub fn write_atomic(
     f(&mut w).map_err(err)?;
     let tmp = w.into_inner().map_err(|e| err(e.into_error()))?;
     tmp.as_file().sync_all().map_err(err)?;
-    tmp.persist(path).map_err(|e| err(e.error))?;
+    let tmp = STAGE.with(|s| match s.borrow_mut().as_mut() {
+        Some(stage) => {
+            stage.push((tmp.into_temp_path(), path.to_path_buf()));
+            None
+        }
+        None => Some(tmp),
+    });
+    if let Some(tmp) = tmp {
+        tmp.persist(path).map_err(|e| err(e.error))?;
+    }
     Ok(())
 }
 

@@ -341,8 +341,20 @@ pub fn write_outputs_with(
             "a connectivity file needs a multi-block case (with [[edge]] tables)",
         ));
     }
+    // All or nothing: a failure at the third file must not leave the first two.
+    crate::io::staged(|| write_each(blocks, topology, paths, &kinds, fmt))
+}
+
+/// The loop of [`write_outputs_with`], inside its stage.
+fn write_each(
+    blocks: &[(String, Block)],
+    topology: Option<&crate::grid::topology::Topology>,
+    paths: &[PathBuf],
+    kinds: &[OutputKind],
+    fmt: &Plot3dFormat,
+) -> Result<Vec<PathBuf>> {
     let mut written = Vec::new();
-    for (path, kind) in paths.iter().zip(kinds) {
+    for (path, &kind) in paths.iter().zip(kinds) {
         match kind {
             OutputKind::Plot3d => {
                 let only: Vec<Block> = blocks.iter().map(|(_, b)| b.clone()).collect();
