@@ -156,3 +156,73 @@ fn node_counts_are_checked_before_anything_is_allocated() {
     assert!(t.contains("needs ~") && t.contains("--ni"), "{t}");
     assert!(!d.path().join("f.x").exists());
 }
+
+#[test]
+fn hostile_vtk_headers_exit_2_without_a_panic() {
+    let d = tempfile::tempdir().unwrap();
+    let good = "<?xml version=\"1.0\"?>\n<VTKFile type=\"StructuredGrid\" version=\"0.1\">\
+                <StructuredGrid WholeExtent=\"0 1 0 1 0 0\"><Piece Extent=\"0 1 0 1 0 0\">\
+                <Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\
+                0 0 0 1 0 0 0 1 0 1 1 0</DataArray></Points></Piece></StructuredGrid></VTKFile>";
+    for (name, body, needle) in [
+        (
+            "root.vts",
+            "WholeExtent=\"0 1\"<VTKFile type=\"StructuredGrid\">".to_string(),
+            "WholeExtent",
+        ),
+        (
+            "wide.vts",
+            good.replace(
+                "\"0 1 0 1 0 0\"",
+                "\"-9223372036854775808 9223372036854775807 0 1 0 0\"",
+            ),
+            "WholeExtent",
+        ),
+        ("nan.vts", good.replace("1 1 0<", "NaN 1 0<"), "non-finite"),
+    ] {
+        std::fs::write(d.path().join(name), body).unwrap();
+        let o = ellipgrid(d.path(), &["convert", name, "out.x"]);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {t}");
+        assert!(t.contains(name) && t.contains(needle), "{name}: {t}");
+        assert!(!t.contains("panicked"), "{t}");
+        assert!(!d.path().join("out.x").exists());
+    }
+    std::fs::write(d.path().join("good.vts"), good).unwrap();
+    let o = ellipgrid(d.path(), &["convert", "good.vts", "out.x"]);
+    assert!(o.status.success(), "{}", text(&o));
+}
+
+#[test]
+fn hostile_step_files_exit_2_without_a_panic_or_a_runaway_allocation() {
+    let d = tempfile::tempdir().unwrap();
+    let net = root().join("data/wing_pylon_net.x");
+    let o = ellipgrid(
+        d.path(),
+        &["step", "export", net.to_str().unwrap(), "-o", "net.step"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let good = fs::read_to_string(d.path().join("net.step")).unwrap();
+    let o = ellipgrid(d.path(), &["step", "list", "net.step"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let huge = good.replacen("(4, 3, 3, 3", "(4, 2147483647, 3, 3", 1);
+    let deep = good.replacen(
+        "('', 3, 3,",
+        &format!("('', 3, 3, {}0{},", "(".repeat(10_000), ")".repeat(10_000)),
+        1,
+    );
+    let inf = good.replacen("(0.0, 0.02083333", "(0.0, 1.E400, 0.02083333", 1);
+    for (name, body, needle) in [
+        ("huge.step", huge, "multiplicity 2147483647"),
+        ("deep.step", deep, "nested deeper"),
+        ("inf.step", inf, "the STEP reader failed"),
+    ] {
+        assert_ne!(body, good, "{name}: the edit did not apply");
+        fs::write(d.path().join(name), body).unwrap();
+        let o = ellipgrid(d.path(), &["step", "list", name]);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {t}");
+        assert!(t.contains(name) && t.contains(needle), "{name}: {t}");
+        assert!(!t.contains("panicked"), "{name}: {t}");
+    }
+}

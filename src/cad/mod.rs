@@ -23,6 +23,7 @@
 //! below 10⁻² in magnitude with 11 significant digits (absolute error below 5·10⁻¹⁴), larger
 //! ones exactly; a face with `same_sense = .F.` is read with u and v swapped.
 
+mod prescan;
 use crate::case::DistributionSpec;
 use crate::grid::Edge;
 use crate::solve::LinearSolver;
@@ -101,6 +102,16 @@ impl StepFace {
     }
 }
 
+/// `f` with its panics caught and not printed: the STEP reader's panics are reported as
+/// errors naming the file, not as a panic message on stderr.
+fn quietly<T>(f: impl FnOnce() -> T) -> std::thread::Result<T> {
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let r = catch_unwind(AssertUnwindSafe(f));
+    std::panic::set_hook(hook);
+    r
+}
+
 /// Reads every face of a STEP file; see the module doc for which faces are gridable.
 ///
 /// # Errors
@@ -108,7 +119,8 @@ impl StepFace {
 /// shell, or truck-stepio fails on it (its panics are caught and reported here).
 pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    let shells = catch_unwind(AssertUnwindSafe(|| parse_shells(&text)))
+    prescan::check(&text).map_err(|m| Error::format(path, m))?;
+    let shells = quietly(|| parse_shells(&text))
         .map_err(|p| {
             let msg = p
                 .downcast_ref::<String>()
@@ -139,7 +151,7 @@ pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
             };
             // truck's curve evaluation may panic on odd edges: such a face is not a patch.
             let trimmed = surface.as_ref().and_then(|s| {
-                catch_unwind(AssertUnwindSafe(|| four_sided(s, shell, face)))
+                quietly(|| four_sided(s, shell, face))
                     .unwrap_or_else(|_| Err("an edge curve could not be evaluated".into()))
                     .err()
             });

@@ -68,8 +68,9 @@ fn parse_vts(bytes: &[u8]) -> std::result::Result<Block, String> {
     }
     let big = attr(root_tag, "byte_order").as_deref() == Some("BigEndian");
     let header64 = attr(root_tag, "header_type").as_deref() == Some("UInt64");
-    let ext = xml.find("WholeExtent=").ok_or("no WholeExtent")?;
-    let ext: Vec<i64> = attr(&xml[ext - 1..], "WholeExtent")
+    // The extent of the grid element, after the root (an attribute before it is not ours).
+    let ext = root + xml[root..].find(" WholeExtent=").ok_or("no WholeExtent")?;
+    let ext: Vec<i64> = attr(&xml[ext..], "WholeExtent")
         .ok_or("bad WholeExtent")?
         .split_whitespace()
         .map(|t| {
@@ -77,10 +78,18 @@ fn parse_vts(bytes: &[u8]) -> std::result::Result<Block, String> {
                 .map_err(|_| format!("bad WholeExtent value '{t}'"))
         })
         .collect::<std::result::Result<_, _>>()?;
-    if ext.len() != 6 || (0..3).any(|a| ext[2 * a + 1] < ext[2 * a]) {
-        return Err(format!("bad WholeExtent {ext:?}"));
-    }
-    let d = [0, 1, 2].map(|a| (ext[2 * a + 1] - ext[2 * a] + 1) as usize);
+    // Each extent's node count, overflow-safe (i64::MIN..i64::MAX must not wrap).
+    let count = |a: usize| {
+        ext[2 * a + 1]
+            .checked_sub(ext[2 * a])
+            .filter(|&v| v >= 0)
+            .and_then(|v| v.checked_add(1))
+            .and_then(|v| usize::try_from(v).ok())
+    };
+    let d = match (ext.len() == 6).then(|| [0, 1, 2].map(count)) {
+        Some([Some(a), Some(b), Some(c)]) => [a, b, c],
+        _ => return Err(format!("bad WholeExtent {ext:?}")),
+    };
     let n = d[0]
         .checked_mul(d[1])
         .and_then(|v| v.checked_mul(d[2]))
@@ -127,9 +136,11 @@ fn parse_vts(bytes: &[u8]) -> std::result::Result<Block, String> {
                 .and_then(|o| o.trim().parse().ok())
                 .ok_or("appended DataArray without offset")?;
             let hl = if header64 { 8 } else { 4 };
-            let start = us + 1 + off + hl;
-            let data = bytes
-                .get(start..start + 3 * n * width)
+            let range = (us + 1 + hl)
+                .checked_add(off)
+                .and_then(|start| Some(start..start.checked_add(3 * n * width)?));
+            let data = range
+                .and_then(|r| bytes.get(r))
                 .ok_or("appended data shorter than the points")?;
             data.chunks_exact(width)
                 .map(|c| match (width, big) {
@@ -148,6 +159,13 @@ fn parse_vts(bytes: &[u8]) -> std::result::Result<Block, String> {
     };
     if vals.len() != 3 * n {
         return Err(format!("{} point values for {n} points", vals.len()));
+    }
+    if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
+        return Err(format!(
+            "point {} has a non-finite coordinate ({})",
+            k / 3,
+            vals[k]
+        ));
     }
     let c = |k: usize| {
         vals.iter()
@@ -211,6 +229,20 @@ mod tests {
         let e = parse_vts(x.replace("version=\"0.1\"", "compressor=\"z\"").as_bytes());
         assert!(e.unwrap_err().contains("compressed"));
         assert!(parse_vts(b"garbage").is_err());
+        // Hostile headers: an extent before the root, extents that overflow, an offset that
+        // overflows, NaN points; errors, not panics.
+        let early = format!("WholeExtent=\"0 1 0 0 0 0\"{x}");
+        assert_eq!(parse_vts(early.as_bytes()).unwrap().coord(0), &[0.0, 2.5]);
+        assert!(parse_vts(b"WholeExtent=\"0 1\"<VTKFile type=\"StructuredGrid\">").is_err());
+        let wide = x.replace(
+            "WholeExtent=\"0 1 0 0 0 0\"",
+            "WholeExtent=\"-9223372036854775808 9223372036854775807 0 0 0 0\"",
+        );
+        assert!(parse_vts(wide.as_bytes())
+            .unwrap_err()
+            .contains("WholeExtent"));
+        let nan = x.replace("2.5 1 0<", "nan 1 0<");
+        assert!(parse_vts(nan.as_bytes()).unwrap_err().contains("point 1"));
         let d = tempfile::tempdir().unwrap();
         let e = read_vts(&d.path().join("none.vts")).unwrap_err();
         assert!(e.to_string().contains("none.vts"));

@@ -1,0 +1,160 @@
+//! Limits checked on a STEP file's text before the STEP reader sees it (issue #17): the
+//! reader expands knot vectors from their multiplicities and parses nested lists
+//! recursively, so a 15 KB file with a multiplicity of 2³¹ − 1 asks for gigabytes, and
+//! 10 000 nested parentheses overflow the stack. Both are refused here with the entity named.
+
+/// Deepest parenthesis nesting accepted (real files stay below 10).
+pub const MAX_DEPTH: usize = 64;
+
+/// Largest knot multiplicity accepted (a multiplicity is at most degree + 1; real degrees
+/// stay below 30).
+pub const MAX_MULTIPLICITY: i64 = 64;
+
+/// Checks nesting depth and every knot multiplicity of B-spline curves and surfaces.
+///
+/// # Errors
+/// A message naming the entity (`#id`) or the line.
+pub fn check(text: &str) -> Result<(), String> {
+    check_depth(text)?;
+    for kind in ["B_SPLINE_SURFACE_WITH_KNOTS", "B_SPLINE_CURVE_WITH_KNOTS"] {
+        let mut from = 0;
+        while let Some(k) = text[from..].find(kind) {
+            let at = from + k;
+            from = at + kind.len();
+            let rest = text[from..].trim_start();
+            if !rest.starts_with('(') {
+                continue;
+            }
+            let open = text.len() - rest.len();
+            let args = top_level_args(&text[open..]);
+            let entity = entity_id(text, at);
+            // Multiplicities: the lists of integers among the arguments (a simple instance has
+            // them after the control points and flags, a complex instance's WITH_KNOTS part
+            // starts with them; both are the only lists of plain integers).
+            for a in &args {
+                for m in integer_list(a) {
+                    if !(1..=MAX_MULTIPLICITY).contains(&m) {
+                        return Err(format!(
+                            "{entity} ({kind}): knot multiplicity {m} outside 1..{MAX_MULTIPLICITY}"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Parenthesis depth outside strings at most [`MAX_DEPTH`].
+fn check_depth(text: &str) -> Result<(), String> {
+    let (mut depth, mut line, mut in_str) = (0usize, 1usize, false);
+    for c in text.chars() {
+        match c {
+            '\'' => in_str = !in_str,
+            '\n' => line += 1,
+            '(' if !in_str => {
+                depth += 1;
+                if depth > MAX_DEPTH {
+                    return Err(format!(
+                        "line {line}: parentheses nested deeper than {MAX_DEPTH}"
+                    ));
+                }
+            }
+            ')' if !in_str => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// The top-level arguments of the list that starts at `s` (with its `(`), as text.
+fn top_level_args(s: &str) -> Vec<&str> {
+    let (mut depth, mut in_str, mut start) = (0usize, false, 1usize);
+    let mut out = Vec::new();
+    for (i, c) in s.char_indices() {
+        match c {
+            '\'' => in_str = !in_str,
+            '(' if !in_str => depth += 1,
+            ')' if !in_str => {
+                depth -= 1;
+                if depth == 0 {
+                    out.push(s[start..i].trim());
+                    return out;
+                }
+            }
+            ',' if !in_str && depth == 1 => {
+                out.push(s[start..i].trim());
+                start = i + 1;
+            }
+            ';' if !in_str => break,
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The integers of an argument that is a flat list of integers, e.g. `(4, 3, 3, 4)`;
+/// nothing for any other argument.
+fn integer_list(arg: &str) -> Vec<i64> {
+    let Some(inner) = arg.strip_prefix('(').and_then(|a| a.strip_suffix(')')) else {
+        return Vec::new();
+    };
+    let items: Vec<&str> = inner.split(',').map(str::trim).collect();
+    let ints: Vec<i64> = items.iter().filter_map(|t| t.parse().ok()).collect();
+    if ints.len() == items.len() {
+        ints
+    } else {
+        // a list of reals (knots), references or nested lists: not multiplicities; an
+        // integer too large for i64 still counts as a (bad) multiplicity
+        if items
+            .iter()
+            .all(|t| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit() || b == b'-'))
+        {
+            vec![i64::MAX]
+        } else {
+            Vec::new()
+        }
+    }
+}
+
+/// `#id` of the entity instance around byte `at` (the last `#` starting a line before it).
+fn entity_id(text: &str, at: usize) -> String {
+    let head = &text[..at];
+    let line_start = head.rfind('\n').map_or(0, |k| k + 1);
+    let line = &text[line_start..at];
+    match line.trim_start().split_once('=') {
+        Some((id, _)) if id.trim().starts_with('#') => id.trim().to_string(),
+        _ => format!("entity at byte {at}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SURF: &str = "#33 = B_SPLINE_SURFACE_WITH_KNOTS('', 3, 3, ((#34, #35), (#36, #37)), \
+        .UNSPECIFIED., .U., .U., .U., (4, 4), (4, 4), (0.0, 1.0), (0.0, 1.0), .UNSPECIFIED.);\n";
+
+    #[test]
+    fn sane_files_pass_and_hostile_multiplicities_and_nesting_are_named() {
+        assert!(check(SURF).is_ok());
+        for bad in [
+            "1000000000",
+            "2147483647",
+            "-4",
+            "0",
+            "99999999999999999999",
+        ] {
+            let t = SURF.replacen("(4, 4)", &format!("(4, {bad})"), 1);
+            let e = check(&t).unwrap_err();
+            assert!(
+                e.contains("#33") && e.contains("multiplicity"),
+                "{bad}: {e}"
+            );
+        }
+        let deep = format!("#1 = X({}{});", "(".repeat(10_000), ")".repeat(10_000));
+        assert!(check(&deep).unwrap_err().contains("line 1"));
+        // strings may hold anything
+        assert!(check("#1 = PRODUCT('((((((((', '');").is_ok());
+    }
+}
