@@ -226,3 +226,28 @@ fn hostile_step_files_exit_2_without_a_panic_or_a_runaway_allocation() {
         assert!(!t.contains("panicked"), "{name}: {t}");
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn endless_special_files_and_directories_are_refused_early() {
+    let d = tempfile::tempdir().unwrap();
+    for args in [
+        &["run", "/dev/zero", "-o", "z.x"][..],
+        &["convert", "/dev/zero", "z.x"],
+        &["step", "list", "/dev/zero"],
+        &["check", "/dev/zero"],
+    ] {
+        let o = ellipgrid(d.path(), args);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {t}");
+        assert!(
+            t.contains("/dev/zero") && t.contains("more than"),
+            "{args:?}: {t}"
+        );
+    }
+    let o = ellipgrid(d.path(), &["run", ".", "-o", "z.x"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("directory"), "{}", text(&o));
+    let left: Vec<_> = fs::read_dir(d.path()).unwrap().collect();
+    assert!(left.is_empty(), "{left:?}");
+}

@@ -118,7 +118,7 @@ fn quietly<T>(f: impl FnOnce() -> T) -> std::thread::Result<T> {
 /// [`Error::Io`] if the file cannot be read; [`Error::Format`] if it is not STEP, has no
 /// shell, or truck-stepio fails on it (its panics are caught and reported here).
 pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = crate::io::read_input_string(path)?;
     prescan::check(&text).map_err(|m| Error::format(path, m))?;
     let shells = quietly(|| parse_shells(&text))
         .map_err(|p| {

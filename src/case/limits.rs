@@ -18,8 +18,7 @@ pub const BYTES_PER_NODE_2D: u64 = 700;
 /// Peak bytes per node of a volume block's generation, rounded up.
 pub const BYTES_PER_NODE_3D: u64 = 2_000;
 
-/// The environment variable that overrides the available memory (gigabytes).
-pub const MEMORY_VAR: &str = "ELLIPGRID_MEMORY_GB";
+pub use crate::io::MEMORY_VAR;
 
 /// Bytes per node of a finished grid kept until it is written (three f64 coordinates).
 pub const KEPT_BYTES_PER_NODE: u64 = 24;
@@ -106,21 +105,7 @@ fn gb(bytes: u64) -> f64 {
     bytes as f64 / 1e9
 }
 
-/// The memory available to a job, in bytes: [`MEMORY_VAR`] if set (gigabytes), else
-/// `MemAvailable` of `/proc/meminfo`, else unknown.
-pub fn available_memory() -> Option<u64> {
-    if let Ok(v) = std::env::var(MEMORY_VAR) {
-        if let Ok(g) = v.trim().parse::<f64>() {
-            if g.is_finite() && g > 0.0 {
-                return Some((g * 1e9) as u64);
-            }
-        }
-    }
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    kb.checked_mul(1024)
-}
+pub use crate::io::available_memory;
 
 #[cfg(test)]
 mod tests {

@@ -46,7 +46,7 @@ fn budget_edge(place: &str, name: &str, n: usize) -> Result<()> {
 impl LoadedCase {
     /// Reads and parses a case file.
     pub fn read(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = crate::io::read_input_string(path)?;
         Self::parse(&text, path)
     }
 
@@ -364,7 +364,7 @@ impl LoadedCase {
                 origin,
             } => {
                 let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
-                let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
+                let text = crate::io::read_input_string(&path)?;
                 let pts = geo::read_airfoil_dat(&text).map_err(|source| Error::Geometry {
                     place: format!("{at}: {}", path.display()),
                     source,

@@ -91,7 +91,7 @@ pub fn write(path: &Path, topo: &Topology, blocks: &[(String, Block)]) -> Result
 
 /// Reads a connectivity file (as [`write`] writes it).
 pub fn read(path: &Path) -> Result<ConnFile> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = crate::io::read_input_string(path)?;
     let bad = |line: usize, m: &str| Error::Format {
         path: path.to_path_buf(),
         msg: format!("line {}: {m}", line + 1),

@@ -90,6 +90,84 @@ impl From<Grid3> for Block {
     }
 }
 
+/// The environment variable that overrides the available memory (gigabytes).
+pub const MEMORY_VAR: &str = "ELLIPGRID_MEMORY_GB";
+
+/// The memory available to a job, in bytes: [`MEMORY_VAR`] if set (gigabytes), else
+/// `MemAvailable` of `/proc/meminfo`, else unknown.
+pub fn available_memory() -> Option<u64> {
+    if let Ok(v) = std::env::var(MEMORY_VAR) {
+        if let Ok(g) = v.trim().parse::<f64>() {
+            if g.is_finite() && g > 0.0 {
+                return Some((g * 1e9) as u64);
+            }
+        }
+    }
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kb.checked_mul(1024)
+}
+
+/// Largest special file (device, pipe: no size known in advance) read as an input.
+pub const MAX_SPECIAL_INPUT_BYTES: u64 = 256 << 20;
+
+/// Reads a whole input file, refusing before the memory runs out: a regular file larger than
+/// the memory available ([`available_memory`]), or a special file (a
+/// device or a pipe, e.g. `/dev/zero`) longer than [`MAX_SPECIAL_INPUT_BYTES`].
+///
+/// # Errors
+/// [`Error::Io`] if the file cannot be read, [`Error::Input`] naming it if it is a directory
+/// or too large.
+pub fn read_input(path: &Path) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let f = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let meta = f.metadata().map_err(|e| Error::io(path, e))?;
+    if meta.is_dir() {
+        return Err(Error::input(path.display().to_string(), "is a directory"));
+    }
+    let avail = available_memory().unwrap_or(u64::MAX);
+    let limit = if meta.is_file() {
+        avail
+    } else {
+        MAX_SPECIAL_INPUT_BYTES.min(avail)
+    };
+    if meta.is_file() && meta.len() > limit {
+        return Err(Error::input(
+            path.display().to_string(),
+            format!(
+                "{} bytes: larger than the {limit} bytes of memory available",
+                meta.len()
+            ),
+        ));
+    }
+    let cap = if meta.is_file() { meta.len() } else { 0 };
+    let mut buf = Vec::with_capacity(usize::try_from(cap).unwrap_or(0));
+    f.take(limit.saturating_add(1))
+        .read_to_end(&mut buf)
+        .map_err(|e| Error::io(path, e))?;
+    if buf.len() as u64 > limit {
+        return Err(Error::input(
+            path.display().to_string(),
+            format!("more than {limit} bytes (a device or a pipe that does not end?)"),
+        ));
+    }
+    Ok(buf)
+}
+
+/// [`read_input`] of a text file (UTF-8).
+///
+/// # Errors
+/// Those of [`read_input`], and [`Error::Io`] if the file is not UTF-8.
+pub fn read_input_string(path: &Path) -> Result<String> {
+    String::from_utf8(read_input(path)?).map_err(|_| {
+        Error::io(
+            path,
+            std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"),
+        )
+    })
+}
+
 thread_local! {
     /// Files written inside [`staged`] on this thread: (temporary file, final path).
     static STAGE: std::cell::RefCell<Option<Vec<(tempfile::TempPath, std::path::PathBuf)>>> =

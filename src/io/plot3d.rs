@@ -172,7 +172,7 @@ pub fn write_plot3d(
 
 /// Reads a Plot3D grid file of any flavour, detected from its contents.
 pub fn read_plot3d(path: &Path) -> Result<Plot3dFile> {
-    let data = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let data = crate::io::read_input(path)?;
     let parsed = if data.is_empty() {
         Err("empty file".to_string())
     } else if let Some(text) = as_text(&data) {

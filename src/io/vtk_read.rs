@@ -14,13 +14,13 @@ use crate::{Error, Grid2, Grid3, Result};
 
 /// Reads one `.vts` file.
 pub fn read_vts(path: &Path) -> Result<Block> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = crate::io::read_input(path)?;
     parse_vts(&bytes).map_err(|m| Error::format(path, m))
 }
 
 /// Reads a `.vtm` index and every `.vts` it lists (paths relative to the index): (name, block).
 pub fn read_vtm(path: &Path) -> Result<Vec<(String, Block)>> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = crate::io::read_input_string(path)?;
     let dir = path.parent().unwrap_or(Path::new(""));
     let mut out = Vec::new();
     for (k, el) in text.split("<DataSet").skip(1).enumerate() {
