@@ -2,8 +2,12 @@
 # Checks ellipgrid's outputs with independent tools (run by .ci/run after the tests):
 #  - VTK's readers on every Plot3D flavour, .vts, .vtm and .obj (.ci/independent_readers.py);
 #  - the Khronos glTF validator on the .glb of every example, of a volume grid with quality
-#    colours, and on a .gltf (.ci/gltf_validate.js; zero errors required).
-# Needs: python3 with vtk (pip install vtk), node with gltf-validator under target/ci-node.
+#    colours, and on a .gltf (.ci/gltf_validate.js; zero errors required);
+#  - NASA's plot3d package on the connectivity file of every multi-block example: the faces
+#    it matches from the coordinates alone are the .conn file's interfaces, its exterior
+#    faces the .conn file's patches (.ci/check_conn.py).
+# Needs: python3 with vtk and plot3d (pip install vtk plot3d), node with gltf-validator under
+# target/ci-node.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
@@ -14,13 +18,26 @@ trap 'rm -rf "$work"' EXIT
 python3 .ci/independent_readers.py "$exe" "$work"
 
 glbs=()
+conns=()
 for ex in examples/*.toml; do
   name="$(basename "$ex" .toml)"
+  extra=()
+  if grep -q '^\[\[edge\]\]' "$ex"; then
+    extra=(-o "$work/$name.conn")
+  fi
   "$exe" run -q "$ex" -o "$work/${name}_run.x" -o "$work/$name.glb" -o "$work/$name.png" \
-    -o "$work/$name.svg"
+    -o "$work/$name.svg" "${extra[@]}"
   "$exe" convert -q "$work/${name}_run.x" "$work/${name}_skewness.glb" --color skewness
   glbs+=("$work/$name.glb" "$work/${name}_skewness.glb")
+  if [ ${#extra[@]} -gt 0 ]; then
+    "$exe" convert -q "$work/${name}_run.x" "$work/${name}_3d.x" --three-d
+    conns+=("$work/${name}_3d.x" "$work/$name.conn")
+  fi
 done
+status=0
+python3 .ci/check_conn.py "${conns[@]}" > "$work/conn.log" 2>&1 || status=$?
+grep -a 'conn: \|only in' "$work/conn.log" || cat "$work/conn.log"
+[ "$status" -eq 0 ]
 # Multi-block volume and planar grids written by independent_readers.py.
 "$exe" convert -q "$work/volume2_ref.xyz" "$work/volume2.glb" --color jacobian
 "$exe" convert -q "$work/planar2_ref.xyz" "$work/planar2.gltf" --color aspect
