@@ -66,8 +66,9 @@ pub fn parse_edges<S: AsRef<str>>(names: &[S], place: &str) -> Result<[bool; 4]>
 /// The new edge functions of eq. [46] from the harmonic (s, t) on grid `g`: s along E3/E4,
 /// t along E1/E2. They must increase strictly along each edge. The discrete harmonic solution
 /// can fall back by round-off-sized amounts over a few nodes where the step-1 grid is very
-/// skewed (a corner with 1e-5 spacing next to a deep concave wall); such short runs are
-/// bridged by interpolation in arclength (`monotone`), longer ones are errors.
+/// skewed (a corner with 1e-5 spacing next to a deep concave wall); such short runs (at most
+/// [`MAX_DISORDER`] out of order) are bridged by interpolation in arclength (`monotone`),
+/// longer or deeper ones are errors.
 pub fn edge_functions<const D: usize>(
     g: &Grid2<D>,
     s: &[f64],
@@ -114,11 +115,16 @@ pub fn edge_functions<const D: usize>(
     })
 }
 
+/// How far (relative to the range of the edge function) a node of a harmonic edge function
+/// may fall out of order and still be bridged: round-off, not a wrong solution.
+pub const MAX_DISORDER: f64 = 1e-6;
+
 /// Makes `v` strictly increasing from its first to its last value: an interior node is kept
 /// if it lies above the last kept node and below the last value; runs of other nodes are
 /// bridged by linear interpolation in arclength `arc` between the kept nodes around them.
-/// Runs longer than an eighth of the edge (at least 3 nodes) are refused: `Err(k)` names the
-/// node pair (k, k + 1) where such a run starts (as does a last value not above the first).
+/// Runs longer than an eighth of the edge (at least 3 nodes), and nodes out of order by more
+/// than [`MAX_DISORDER`] of the range, are refused: `Err(k)` names the node pair (k, k + 1)
+/// where such a run starts (as does a last value not above the first).
 fn monotone(v: &mut [f64], arc: &[f64]) -> std::result::Result<(), usize> {
     let n = v.len();
     let (first, last) = (v[0], v[n - 1]);
@@ -130,6 +136,16 @@ fn monotone(v: &mut [f64], arc: &[f64]) -> std::result::Result<(), usize> {
     for k in 1..n {
         let keep = k == n - 1 || (v[k] > v[lo] && v[k] < last);
         if !keep {
+            // out of order by this much: round-off only
+            let by = if v[k] <= v[lo] {
+                v[lo] - v[k]
+            } else {
+                v[k] - last
+            };
+            let small = by.partial_cmp(&(MAX_DISORDER * (last - first)));
+            if !small.is_some_and(|o| o.is_le()) {
+                return Err(lo);
+            }
             continue;
         }
         if k - lo - 1 > limit || arc[k].partial_cmp(&arc[lo]) != Some(std::cmp::Ordering::Greater) {
@@ -161,6 +177,10 @@ mod monotone_tests {
         over[15] = 1.0 + 1e-8;
         monotone(&mut over, &arc).unwrap();
         assert!(over.windows(2).all(|w| w[1] > w[0]));
+        // A dip beyond round-off (1e-4 of the range) is a wrong solution, not bridged.
+        let mut deep: Vec<f64> = (0..17).map(|k| k as f64 / 16.0).collect();
+        deep[5] = deep[4] - 1e-4;
+        assert_eq!(monotone(&mut deep, &arc), Err(4));
         let mut flat = vec![0.0; 17];
         flat[16] = 1.0;
         assert_eq!(monotone(&mut flat, &arc), Err(0));
