@@ -84,25 +84,6 @@ fn rectangle_case_is_exact_through_the_cli() {
     }
 }
 
-/// Runs a bad case and checks exit code 2, the message, and that no output appeared.
-fn rejects(case: &str, needles: &[&str]) {
-    let d = tmp();
-    fs::write(d.path().join("bad.toml"), case).unwrap();
-    let o = ellipgrid(
-        d.path(),
-        &["run", "bad.toml", "-o", "out.x", "--report", "r.json"],
-    );
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(2), "{t}");
-    for n in needles {
-        assert!(t.contains(n), "message lacks '{n}': {t}");
-    }
-    assert!(!t.contains("panicked"), "{t}");
-    assert!(!d.path().join("out.x").exists(), "partial output written");
-    let left: Vec<_> = fs::read_dir(d.path()).unwrap().collect();
-    assert_eq!(left.len(), 1, "stray files: {left:?}");
-}
-
 const E1: &str = "curve = { type = \"line\", from = [0, 0], to = [0, 1] }";
 const E2: &str = "curve = { type = \"line\", from = [1, 0], to = [1, 1] }";
 const E3: &str = "curve = { type = \"line\", from = [0, 0], to = [1, 0] }";

@@ -9,24 +9,6 @@ mod common;
 use common::*;
 use std::fs;
 
-/// Runs `case` and checks exit 2, the `needles` in the message, no panic, no file left.
-fn rejects(case: &str, needles: &[&str]) {
-    let d = tempfile::tempdir().unwrap();
-    fs::write(d.path().join("bad.toml"), case).unwrap();
-    let o = ellipgrid(
-        d.path(),
-        &["run", "bad.toml", "-o", "out.x", "--report", "r.json"],
-    );
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(2), "{t}");
-    for n in needles {
-        assert!(t.contains(n), "message lacks '{n}': {t}");
-    }
-    assert!(!t.contains("panicked"), "{t}");
-    let left: Vec<_> = fs::read_dir(d.path()).unwrap().collect();
-    assert_eq!(left.len(), 1, "files written: {left:?}");
-}
-
 #[test]
 fn solver_settings_out_of_range_exit_2_naming_the_key() {
     let base = square_case(5, 5);

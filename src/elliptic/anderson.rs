@@ -21,6 +21,7 @@
 //! choose the combination; the correction f_k itself is f64, and the fixed point does not
 //! depend on them.
 
+use crate::solve::krylov::in_order;
 use rayon::prelude::*;
 use std::collections::VecDeque;
 
@@ -140,12 +141,7 @@ impl Anderson {
             rhs[p] = self.df[p]
                 .iter()
                 .zip(f)
-                .map(|(x, y)| {
-                    x.par_iter()
-                        .zip(y)
-                        .map(|(u, v)| f64::from(*u) * v)
-                        .sum::<f64>()
-                })
+                .map(|(x, y)| fixed_dot(x, y, |v| *v))
                 .sum();
         }
         let scale = (0..m).map(|p| gram[(p, p)]).fold(0.0f64, f64::max);
@@ -167,13 +163,20 @@ impl Anderson {
 fn dot32(a: &[Vec<f32>], b: &[Vec<f32>]) -> f64 {
     a.iter()
         .zip(b)
-        .map(|(x, y)| {
-            x.par_iter()
-                .zip(y)
-                .map(|(u, v)| f64::from(*u) * f64::from(*v))
-                .sum::<f64>()
-        })
+        .map(|(x, y)| fixed_dot(x, y, |v| f64::from(*v)))
         .sum()
+}
+
+/// Σ x_i y_i over fixed chunks of 8192 terms added in chunk order (as
+/// [`crate::solve::krylov::dot`]): the same bits whatever the thread count.
+fn fixed_dot<T: Sync>(x: &[f32], y: &[T], f: impl Fn(&T) -> f64 + Sync) -> f64 {
+    let chunk = |(a, b): (&[f32], &[T])| {
+        a.iter()
+            .zip(b)
+            .map(|(u, v)| f64::from(*u) * f(v))
+            .sum::<f64>()
+    };
+    in_order(x.par_chunks(8192).zip(y.par_chunks(8192)).map(chunk))
 }
 
 #[cfg(test)]

@@ -46,3 +46,22 @@ pub fn square_case(ni: usize, nj: usize) -> String {
         "curve = { type = \"line\", from = [0, 1], to = [1, 1] }",
     )
 }
+
+/// Runs `case` (written as `bad.toml`) and checks what every bad input must give: exit 2, the
+/// `needles` in the message, no panic, and no file written (not even a partial one).
+pub fn rejects(case: &str, needles: &[&str]) {
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("bad.toml"), case).unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &["run", "bad.toml", "-o", "out.x", "--report", "r.json"],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    for n in needles {
+        assert!(t.contains(n), "message lacks '{n}': {t}");
+    }
+    assert!(!t.contains("panicked"), "{t}");
+    let left: Vec<_> = std::fs::read_dir(d.path()).unwrap().collect();
+    assert_eq!(left.len(), 1, "files written: {left:?}");
+}
