@@ -43,8 +43,8 @@ pub use bvh::BoxTree;
 pub use curve::{sample, Arc, ArclengthMap, Curve, Line, Naca4, Naca4Side, Polyline, Spline};
 pub use distribution::{geometric, reverse, uniform, vinokur, Distribution};
 pub use surface::{
-    project, project_to_edge, scherk_distance, BSplineSurf, HermiteSurface, Plane, Scherk, Surface,
-    SurfaceEdge, SurfaceLocator, SurfacePoint, TanhBump,
+    project, project_to_edge, project_within, scherk_distance, BSplineSurf, HermiteSurface, Plane,
+    Scherk, Surface, SurfaceEdge, SurfaceLocator, SurfacePoint, TanhBump, TruckCurve, TruckSurface,
 };
 
 /// A point or vector in R³; planar curves have z = 0.

@@ -1,46 +1,55 @@
-//! STEP in and out (ISO 10303-21) through truck-stepio: B-spline / NURBS faces of a STEP file
-//! as [`BSplineSurf`] surfaces for the Section 4 pipeline ([`crate::surface::pipeline`]), and a
+//! STEP in and out (ISO 10303-21) through truck-stepio: the faces of a STEP file gridded as
+//! four-sided block faces by the Section 4 pipeline ([`crate::surface::pipeline`]), and a
 //! B-spline surface (e.g. a [`ellipgrid_geometry::HermiteSurface`] control net through
 //! `to_bspline`) written as one STEP face so that control nets can go to CAD tools.
 //!
-//! | entry point | what |
+//! | file | what |
 //! |---|---|
-//! | [`read_step_faces`] | every face of every shell, in file order, numbered from 1 |
-//! | [`step_surface`] | the surface of one gridable face (for case files) |
-//! | [`grid_patch`] | Section 4 grid of a four-sided patch with per-direction distributions |
-//! | [`write_step_surface`] | one B-spline face bounded by its four iso-parameter sides |
+//! | `mod` | [`read_step_faces`]: every face of every shell, numbered from 1; [`step_surface`] |
+//! | `patch` | untrimmed four-sided B-spline/NURBS faces: the check, [`grid_patch`] |
+//! | `trim` | a face's boundary loop on its surface: (u, v) by projection, corners, four sides |
+//! | `face` | [`grid_face`]: any one-loop face as a block face (Section 2 in (u, v), then Section 4) |
+//! | `write` | [`write_step_surface`]: one B-spline face bounded by its four iso-parameter sides |
+//! | `prescan` | bounds on the STEP text before truck-stepio expands it |
 //!
-//! A face is *gridable* when its surface is a B-spline or NURBS surface and its boundary is a
-//! single loop of edges that lie on the four sides of the surface's parameter square and cover
-//! them (an untrimmed four-sided patch). The boundary nodes are then placed on the sides of
-//! the surface itself at the requested 3D arclengths ([`crate::surface::pipeline::edge_params`]); they
-//! coincide with the face's edge curves to within the check's tolerance
-//! ([`FOUR_SIDED_TOL`] of the surface's size). Trimmed faces, faces with holes and faces of
-//! other surface types are reported with the reason and not gridded (for now).
+//! Two routes grid a face ([`Route`]):
+//! - an *untrimmed four-sided patch* (a B-spline or NURBS surface whose boundary edges lie on
+//!   the four sides of its parameter square, to [`FOUR_SIDED_TOL`] of its size) is gridded on
+//!   the surface's own parametrization ([`grid_patch`]);
+//! - any other face bounded by *one loop* of edges, on any surface truck reads (planes,
+//!   cylinders, cones, spheres, tori, extrusions, revolutions, B-splines of any degree), is
+//!   gridded as a block face ([`grid_face`]): four corners picked on the loop, a Section 2
+//!   (Winslow) grid in the surface's (u, v) plane bounded by the four sides as the face's
+//!   parametrization from the unit square, then the Section 4 pipeline on top, so that the
+//!   grid depends on neither parametrization.
+//!
+//! Faces with holes (several loops), without a boundary or whose loop winds around the
+//! surface (a closed band without seam) are refused with the reason.
 //!
 //! Limits of truck-stepio 0.3 that show here: faces whose surface or edges it cannot convert
 //! are skipped (it prints a line to stderr) and so get no number; its writer prints numbers
 //! below 10⁻² in magnitude with 11 significant digits (absolute error below 5·10⁻¹⁴), larger
 //! ones exactly; a face with `same_sense = .F.` is read with u and v swapped.
 
+mod edge;
+mod face;
+mod patch;
 mod prescan;
-use crate::case::DistributionSpec;
-use crate::grid::Edge;
-use crate::solve::LinearSolver;
-use crate::surface::pipeline::{
-    edge_length, edge_params, grid_surface, surface_edge, SurfaceResult,
-};
+mod trim;
+mod write;
+
+pub use face::{grid_face, FaceGrid};
+pub use patch::grid_patch;
+pub use write::write_step_surface;
+
 use crate::{Error, Result};
-use ellipgrid_geometry::{project_to_edge, BSplineSurf, Surface, SurfaceEdge, Vec3};
+use ellipgrid_geometry::BSplineSurf;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
-use truck_geometry::prelude::{BSplineCurve, BSplineSurface, ParametricCurve, Point3};
-use truck_stepio::out::{CompleteStepDisplay, StepHeaderDescriptor, StepModel};
+use truck_geometry::prelude::Point3;
 use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 use truck_stepio::r#in::{ruststep, Table};
-use truck_topology::compress::{
-    CompressedEdge, CompressedEdgeIndex, CompressedFace, CompressedShell,
-};
+use truck_topology::compress::{CompressedFace, CompressedShell};
 
 /// Tolerance of the four-sided check, relative to the diagonal of the surface's bounding box:
 /// every boundary edge must lie this close to one side of the parameter square.
@@ -48,30 +57,73 @@ pub const FOUR_SIDED_TOL: f64 = 1e-6;
 
 type Shell = CompressedShell<Point3, Curve3D, StepSurface>;
 
+/// One oriented edge of a face's boundary loop.
+#[derive(Clone, Debug)]
+pub struct LoopEdge {
+    /// The edge's 3D curve.
+    pub curve: Curve3D,
+    /// The curve's parameters of the edge's vertices, increasing.
+    pub range: (f64, f64),
+    /// Whether the loop runs along the curve's direction.
+    pub forward: bool,
+}
+
+/// How a face is gridded, or why it is not.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Route {
+    /// An untrimmed four-sided B-spline/NURBS patch, gridded on its own parametrization.
+    Patch,
+    /// One boundary loop of this many edges, gridded as a block face ([`grid_face`]).
+    Trimmed(usize),
+    /// Not gridable, with the reason.
+    Refused(String),
+}
+
 /// One face of a STEP file.
 #[derive(Clone, Debug)]
 pub struct StepFace {
     /// 1-based number over all shells in file order (shells by entity number).
     pub index: usize,
-    /// The surface type: "B-spline", "NURBS", or a phrase naming an elementary (plane,
-    /// cylinder, …) or swept surface.
+    /// The surface type: "B-spline", "NURBS", "plane", "cylinder", … .
     pub surface_type: &'static str,
-    /// The surface, if it is a B-spline or NURBS surface that ellipgrid can evaluate.
+    /// The surface, if it is a B-spline or NURBS surface that [`BSplineSurf`] can evaluate.
     pub surface: Option<BSplineSurf>,
-    /// Why a B-spline or NURBS surface cannot be used (degree above
+    /// Why a B-spline or NURBS surface cannot be used by [`BSplineSurf`] (degree above
     /// [`BSplineSurf::MAX_DEGREE`], bad knots or weights), if so.
     pub surface_error: Option<String>,
     /// `None` for an untrimmed four-sided patch, else why the face is not one.
     pub trimmed: Option<String>,
+    /// The surface as truck reads it (any type; evaluated through truck).
+    pub cad_surface: StepSurface,
+    /// The boundary loops; `Err` names an edge that is missing or unbounded.
+    pub loops: std::result::Result<Vec<Vec<LoopEdge>>, String>,
+    /// Whether the face's normal is the surface's (as read: `same_sense` already applied).
+    pub orientation: bool,
 }
 
 impl StepFace {
-    /// Whether the face can be gridded: a B-spline/NURBS surface, untrimmed and four-sided.
+    /// Whether the face is an untrimmed four-sided B-spline/NURBS patch.
     pub fn is_four_sided_patch(&self) -> bool {
         self.surface.is_some() && self.trimmed.is_none()
     }
 
-    /// The surface of a gridable face.
+    /// How the face is gridded, or why not.
+    pub fn route(&self) -> Route {
+        if self.is_four_sided_patch() {
+            return Route::Patch;
+        }
+        match &self.loops {
+            Err(e) => Route::Refused(e.clone()),
+            Ok(l) if l.is_empty() => Route::Refused("no boundary loop".into()),
+            Ok(l) if l.len() > 1 => Route::Refused(format!(
+                "{} boundary loops (holes): a face with holes is not one block face",
+                l.len()
+            )),
+            Ok(l) => Route::Trimmed(l[0].len()),
+        }
+    }
+
+    /// The surface of an untrimmed four-sided patch (for case files).
     ///
     /// # Errors
     /// [`Error::Input`] naming `file` and the face if the surface is not a B-spline/NURBS
@@ -85,7 +137,8 @@ impl StepFace {
             return Err(Error::input(
                 place,
                 format!(
-                    "the surface is {}; only B-spline and NURBS faces can be gridded",
+                    "the surface is a {}; only untrimmed four-sided B-spline and NURBS faces \
+                     can be used as surfaces of case-file blocks",
                     self.surface_type
                 ),
             ));
@@ -94,9 +147,7 @@ impl StepFace {
             None => Ok(s),
             Some(why) => Err(Error::input(
                 place,
-                format!(
-                    "not an untrimmed four-sided patch ({why}); such faces are not supported yet"
-                ),
+                format!("not an untrimmed four-sided patch ({why})"),
             )),
         }
     }
@@ -112,7 +163,7 @@ fn quietly<T>(f: impl FnOnce() -> T) -> std::thread::Result<T> {
     r
 }
 
-/// Reads every face of a STEP file; see the module doc for which faces are gridable.
+/// Reads every face of a STEP file; see the module doc for how each is gridded.
 ///
 /// # Errors
 /// [`Error::Io`] if the file cannot be read; [`Error::Format`] if it is not STEP, has no
@@ -120,6 +171,7 @@ fn quietly<T>(f: impl FnOnce() -> T) -> std::thread::Result<T> {
 pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
     let text = crate::io::read_input_string(path)?;
     prescan::check(&text).map_err(|m| Error::format(path, m))?;
+    let text = edge::prefer_3d_curves(&text);
     let shells = quietly(|| parse_shells(&text))
         .map_err(|p| {
             let msg = p
@@ -133,35 +185,7 @@ pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
     let mut faces = Vec::new();
     for shell in &shells {
         for face in &shell.faces {
-            let (surface_type, surface) = match &face.surface {
-                StepSurface::BSplineSurface(s) => {
-                    ("B-spline", Some(BSplineSurf::from_truck_bspline(s)))
-                }
-                StepSurface::NurbsSurface(s) => ("NURBS", Some(BSplineSurf::from_truck_nurbs(s))),
-                StepSurface::ElementarySurface(_) => (
-                    "an elementary surface (plane, cylinder, cone, sphere or torus)",
-                    None,
-                ),
-                StepSurface::SweptCurve(_) => ("a swept surface (extrusion or revolution)", None),
-            };
-            let index = faces.len() + 1;
-            let (surface, surface_error) = match surface.transpose() {
-                Ok(s) => (s, None),
-                Err(e) => (None, Some(e.to_string())),
-            };
-            // truck's curve evaluation may panic on odd edges: such a face is not a patch.
-            let trimmed = surface.as_ref().and_then(|s| {
-                quietly(|| four_sided(s, shell, face))
-                    .unwrap_or_else(|_| Err("an edge curve could not be evaluated".into()))
-                    .err()
-            });
-            faces.push(StepFace {
-                index,
-                surface_type,
-                surface,
-                surface_error,
-                trimmed,
-            });
+            faces.push(step_face(faces.len() + 1, shell, face));
         }
     }
     if faces.is_empty() {
@@ -171,6 +195,100 @@ pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
         ));
     }
     Ok(faces)
+}
+
+/// The surface type's name.
+fn surface_type(s: &StepSurface) -> &'static str {
+    use truck_stepio::r#in::alias::{ElementarySurface as E, SweptCurve as W};
+    match s {
+        StepSurface::BSplineSurface(_) => "B-spline",
+        StepSurface::NurbsSurface(_) => "NURBS",
+        StepSurface::ElementarySurface(e) => match **e {
+            E::Plane(_) => "plane",
+            E::Sphere(_) => "sphere",
+            E::CylindricalSurface(_) => "cylinder",
+            E::ToroidalSurface(_) => "torus",
+            E::ConicalSurface(_) => "cone",
+        },
+        StepSurface::SweptCurve(w) => match **w {
+            W::ExtrudedCurve(_) => "extrusion",
+            W::RevolutedCurve(_) => "revolution",
+        },
+    }
+}
+
+/// Distance within which a vertex is on its edge's curve: 1e-4 of the shell's size (real
+/// files' gaps reach ~6e-5 of it).
+fn vertex_tolerance(shell: &Shell) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &shell.vertices {
+        for (c, v) in [p.x, p.y, p.z].into_iter().enumerate() {
+            lo[c] = lo[c].min(v);
+            hi[c] = hi[c].max(v);
+        }
+    }
+    let d = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+    if d.is_finite() {
+        1e-4 * d + 1e-12
+    } else {
+        1e-9
+    }
+}
+
+fn step_face(index: usize, shell: &Shell, face: &CompressedFace<StepSurface>) -> StepFace {
+    let surface = match &face.surface {
+        StepSurface::BSplineSurface(s) => Some(BSplineSurf::from_truck_bspline(s)),
+        StepSurface::NurbsSurface(s) => Some(BSplineSurf::from_truck_nurbs(s)),
+        _ => None,
+    };
+    let (surface, surface_error) = match surface.transpose() {
+        Ok(s) => (s, None),
+        Err(e) => (None, Some(e.to_string())),
+    };
+    // truck's curve evaluation may panic on odd edges: such a face is not a patch.
+    let trimmed = surface.as_ref().and_then(|s| {
+        quietly(|| patch::four_sided(s, shell, face))
+            .unwrap_or_else(|_| Err("an edge curve could not be evaluated".into()))
+            .err()
+    });
+    let tol = vertex_tolerance(shell);
+    let loops = face
+        .boundaries
+        .iter()
+        .map(|l| {
+            l.iter()
+                .enumerate()
+                .map(|(n, ei)| {
+                    let at = |m: String| format!("boundary edge {}: {m}", n + 1);
+                    let edge = shell.edges.get(ei.index).ok_or_else(|| {
+                        at("missing (the STEP reader could not convert it)".into())
+                    })?;
+                    let v = |k: usize| {
+                        shell
+                            .vertices
+                            .get(k)
+                            .copied()
+                            .ok_or_else(|| at("a vertex is missing".into()))
+                    };
+                    let ends = (v(edge.vertices.0)?, v(edge.vertices.1)?);
+                    quietly(|| edge::loop_edge(&edge.curve, ends, ei.orientation, tol))
+                        .unwrap_or_else(|_| Err("its curve could not be evaluated".into()))
+                        .map_err(at)
+                })
+                .collect()
+        })
+        .collect();
+    StepFace {
+        index,
+        surface_type: surface_type(&face.surface),
+        surface,
+        surface_error,
+        trimmed,
+        cad_surface: face.surface.clone(),
+        loops,
+        orientation: face.orientation,
+    }
 }
 
 /// The surface of face `face` (1-based) of a STEP file, for use as a surface block.
@@ -209,220 +327,4 @@ fn parse_shells(text: &str) -> std::result::Result<Vec<Shell>, String> {
                 .map_err(|e| format!("shell #{id}: {e}"))
         })
         .collect()
-}
-
-/// Checks that the face is bounded by one loop of edges on the sides of the parameter square
-/// covering all four; the reason if not.
-fn four_sided(
-    s: &BSplineSurf,
-    shell: &Shell,
-    face: &CompressedFace<StepSurface>,
-) -> std::result::Result<(), String> {
-    let loops = &face.boundaries;
-    match loops.len() {
-        0 => return Err("no boundary loop".into()),
-        1 => {}
-        n => return Err(format!("{n} boundary loops (holes)")),
-    }
-    const NS: usize = 64; // coarse samples of each side, to start Newton from
-    let sides = [
-        SurfaceEdge::U0,
-        SurfaceEdge::U1,
-        SurfaceEdge::V0,
-        SurfaceEdge::V1,
-    ];
-    let coarse: Vec<Vec<Vec3>> = sides
-        .iter()
-        .map(|e| {
-            (0..=NS)
-                .map(|k| {
-                    let (u, v) = e.uv(k as f64 / NS as f64);
-                    s.point(u, v)
-                })
-                .collect()
-        })
-        .collect();
-    let all = coarse.iter().flatten();
-    let (lo, hi) = all.fold(
-        (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.inf(p), hi.sup(p)),
-    );
-    let tol = FOUR_SIDED_TOL * (hi - lo).norm().max(f64::MIN_POSITIVE);
-    // Parameter of p on side k and its distance, or None if p is not on it.
-    let on_side = |k: usize, p: Vec3| -> Option<f64> {
-        let (k0, _) = coarse[k]
-            .iter()
-            .enumerate()
-            .map(|(i, q)| (i, (q - p).norm()))
-            .min_by(|a, b| a.1.total_cmp(&b.1))?;
-        let t = project_to_edge(s, sides[k], p, k0 as f64 / NS as f64)?;
-        let (u, v) = sides[k].uv(t);
-        ((s.point(u, v) - p).norm() <= tol).then_some(t)
-    };
-    let mut covered: [Vec<(f64, f64)>; 4] = Default::default();
-    for (n, ei) in loops[0].iter().enumerate() {
-        let Some(edge) = shell.edges.get(ei.index) else {
-            return Err(format!("boundary edge {} is missing", n + 1));
-        };
-        let Some((a, b)) = edge.curve.try_range_tuple() else {
-            return Err(format!("boundary edge {} is unbounded", n + 1));
-        };
-        const NE: usize = 16;
-        let pts: Vec<Vec3> = (0..=NE)
-            .map(|k| {
-                let p = edge.curve.subs(a + (b - a) * k as f64 / NE as f64);
-                Vec3::new(p.x, p.y, p.z)
-            })
-            .collect();
-        let side = (0..4).find_map(|k| {
-            let ts: Option<Vec<f64>> = pts.iter().map(|p| on_side(k, *p)).collect();
-            ts.map(|ts| (k, ts))
-        });
-        let Some((k, ts)) = side else {
-            return Err(format!(
-                "boundary edge {} is not on a side of the surface's parameter square",
-                n + 1
-            ));
-        };
-        let (t0, t1) = ts
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| {
-                (a.min(*t), b.max(*t))
-            });
-        covered[k].push((t0, t1));
-    }
-    for (k, iv) in covered.iter_mut().enumerate() {
-        iv.sort_by(|a, b| a.0.total_cmp(&b.0));
-        // Sweep: the union of the edges' parameter intervals must be [0, 1] (small gaps are
-        // the tolerance of the projection).
-        let mut reach = 0.0;
-        for &(a, b) in iv.iter() {
-            if a > reach + 1e-6 {
-                break;
-            }
-            reach = f64::max(reach, b);
-        }
-        if reach < 1.0 - 1e-6 {
-            let name = ["u = 0", "u = 1", "v = 0", "v = 1"][k];
-            return Err(format!(
-                "the side {name} of the surface is not covered by its boundary edges"
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// Section 4 grid of an untrimmed four-sided patch: `ni` nodes along the u sides (E3, E4),
-/// `nj` along the v sides (E1, E2), placed on each side by `dist_i` / `dist_j` (spacings are
-/// lengths, as in case files), then [`grid_surface`].
-///
-/// # Errors
-/// Bad distributions or node counts ([`Error::Input`] / [`Error::Geometry`] at `place`), and
-/// those of [`grid_surface`].
-pub fn grid_patch(
-    surface: &dyn Surface,
-    (ni, nj): (usize, usize),
-    dist_i: &DistributionSpec,
-    dist_j: &DistributionSpec,
-    solver: &mut dyn LinearSolver,
-    place: &str,
-) -> Result<SurfaceResult> {
-    if ni < 3 || nj < 3 {
-        return Err(Error::input(
-            place,
-            format!("a surface grid needs at least 3 × 3 nodes, got {ni} × {nj}"),
-        ));
-    }
-    let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
-    for e in Edge::ALL {
-        let (n, d) = match surface_edge(e) {
-            SurfaceEdge::V0 | SurfaceEdge::V1 => (ni, dist_i),
-            SurfaceEdge::U0 | SurfaceEdge::U1 => (nj, dist_j),
-        };
-        let at = format!("{place}, edge {e}");
-        let sigma = d.sample(n, edge_length(surface, e), &at)?;
-        uv[e.index()] = edge_params(surface, e, &sigma);
-    }
-    grid_surface(surface, &uv, solver, place)
-}
-
-/// Writes a B-spline surface as one STEP face (a FACE_SURFACE in the OPEN_SHELL of a
-/// SHELL_BASED_SURFACE_MODEL; truck tags lengths as millimetres) bounded by its four
-/// iso-parameter sides (B-spline edge curves), atomically.
-///
-/// # Errors
-/// [`Error::Input`] if the surface is not finite or its knot vectors are not clamped (end
-/// knots of multiplicity degree + 1, so that the sides are curves of the boundary control
-/// points); [`Error::Io`] if the file cannot be written.
-pub fn write_step_surface(path: &Path, surface: &BSplineSurface<Point3>) -> Result<()> {
-    let place = path.display().to_string();
-    BSplineSurf::from_truck_bspline(surface).map_err(|source| Error::Geometry {
-        place: place.clone(),
-        source,
-    })?;
-    let cp = surface.control_points();
-    let (nu, nv) = (cp.len(), cp[0].len());
-    let (uk, vk) = (surface.uknot_vec(), surface.vknot_vec());
-    for (dir, k, n) in [("u", uk, nu), ("v", vk, nv)] {
-        let p = k.len() - n - 1;
-        let clamped = k[..=p].iter().all(|t| *t == k[0]) && k[n..].iter().all(|t| *t == k[n]);
-        if !clamped {
-            return Err(Error::input(
-                place,
-                format!("the {dir} knot vector is not clamped (end multiplicity {}): its sides are not curves of its boundary control points", p + 1),
-            ));
-        }
-    }
-    let curve = |knots: &truck_geometry::prelude::KnotVec, pts: Vec<Point3>| {
-        Curve3D::BSplineCurve(BSplineCurve::new(knots.clone(), pts))
-    };
-    let column = |j: usize| (0..nu).map(|i| cp[i][j]).collect::<Vec<_>>();
-    let row = |i: usize| cp[i].clone();
-    // Corners 0 (u0 v0), 1 (u1 v0), 2 (u1 v1), 3 (u0 v1); the loop runs 0 → 1 → 2 → 3 → 0,
-    // counterclockwise in (u, v), so the face normal is x_u × x_v.
-    let vertices = vec![cp[0][0], cp[nu - 1][0], cp[nu - 1][nv - 1], cp[0][nv - 1]];
-    let edges = vec![
-        CompressedEdge {
-            vertices: (0, 1),
-            curve: curve(uk, column(0)),
-        },
-        CompressedEdge {
-            vertices: (1, 2),
-            curve: curve(vk, row(nu - 1)),
-        },
-        CompressedEdge {
-            vertices: (3, 2),
-            curve: curve(uk, column(nv - 1)),
-        },
-        CompressedEdge {
-            vertices: (0, 3),
-            curve: curve(vk, row(0)),
-        },
-    ];
-    let boundary = [(0, true), (1, true), (2, false), (3, false)]
-        .map(CompressedEdgeIndex::from)
-        .to_vec();
-    let shell: Shell = CompressedShell {
-        vertices,
-        edges,
-        faces: vec![CompressedFace {
-            boundaries: vec![boundary],
-            orientation: true,
-            surface: StepSurface::BSplineSurface(Box::new(surface.clone())),
-        }],
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let text = CompleteStepDisplay::new(
-        StepModel::from(&shell),
-        StepHeaderDescriptor {
-            file_name: name,
-            organization_system: "ellipgrid".into(),
-            ..Default::default()
-        },
-    )
-    .to_string();
-    crate::io::write_atomic(path, |w| w.write_all(text.as_bytes()))
 }

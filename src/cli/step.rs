@@ -3,13 +3,14 @@
 //! [`ellipgrid::cad`].
 
 use clap::{Args, Subcommand};
-use ellipgrid::cad::{self, StepFace};
+use ellipgrid::cad::{self, Route, StepFace};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::io::plot3d::{self, Plot3dFormat};
 use ellipgrid::io::Block;
 use ellipgrid::quality::quality3d::AnyQuality;
 use ellipgrid::{job, quality, solve, Error, Result};
-use ellipgrid_geometry::{HermiteSurface, Surface, Vec3};
+use ellipgrid_geometry::{HermiteSurface, Vec3};
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `ellipgrid step`.
@@ -26,8 +27,8 @@ enum StepCommand {
         /// The STEP file (.step/.stp).
         file: PathBuf,
     },
-    /// Grid faces of a STEP file by the Section 4 pipeline (untrimmed four-sided B-spline or
-    /// NURBS faces; others give an error naming the face).
+    /// Grid faces of a STEP file as four-sided block faces by the Section 4 pipeline: any face
+    /// bounded by one loop of edges, on any surface type.
     Grid(GridArgs),
     /// Write a surface block of a Plot3D file, taken as a Hermite control net, as a bicubic
     /// B-spline face in a STEP file.
@@ -54,13 +55,15 @@ struct GridArgs {
     /// The face to grid (1-based, as numbered by `ellipgrid step list`).
     #[arg(long, required_unless_present = "all", conflicts_with = "all")]
     face: Option<usize>,
-    /// Grid every face that can be gridded (the others are listed on stderr).
+    /// Grid every face, each on its own and in parallel: the grids of the faces that could be
+    /// gridded are written, the others listed on stderr with the reason (exit code 2).
     #[arg(long)]
     all: bool,
-    /// Nodes along the u sides of each face (i direction).
+    /// Nodes along the first and third sides of each face (i direction; for an untrimmed
+    /// patch the sides v = 0 and v = 1).
     #[arg(long, default_value_t = 65)]
     ni: usize,
-    /// Nodes along the v sides of each face (j direction).
+    /// Nodes along the second and fourth sides of each face (j direction).
     #[arg(long, default_value_t = 49)]
     nj: usize,
     /// First spacing along the u sides (a length; Vinokur stretching; default uniform).
@@ -106,16 +109,16 @@ pub fn step(a: &StepArgs) -> Result<()> {
 
 fn list(file: &Path) -> Result<()> {
     for f in cad::read_step_faces(file)? {
-        let what = match (&f.surface, &f.trimmed) {
-            (None, _) => match &f.surface_error {
-                Some(e) => format!("not gridable: {e}"),
-                None => "not gridable: not a B-spline/NURBS surface".to_string(),
-            },
-            (Some(_), Some(why)) => format!("not gridable: {why}"),
-            (Some(s), None) => {
-                let (p, q) = s.degrees();
+        let what = match f.route() {
+            Route::Patch => {
+                let (p, q) = f.surface.as_ref().map_or((0, 0), |s| s.degrees());
                 format!("four-sided patch, degrees {p} × {q}")
             }
+            Route::Trimmed(n) => format!(
+                "block face: one loop of {n} edge{}",
+                if n == 1 { "" } else { "s" }
+            ),
+            Route::Refused(why) => format!("not gridable: {why}"),
         };
         println!("face {}: {}, {what}", f.index, f.surface_type);
     }
@@ -143,25 +146,12 @@ fn grid(a: &GridArgs) -> Result<()> {
                     format!("no such face: the file has faces 1 to {}", faces.len()),
                 )
             })?;
-            f.patch(&a.file)?;
+            if let Route::Refused(why) = f.route() {
+                return Err(Error::input(format!("{name}: face {n}"), why));
+            }
             vec![f]
         }
-        None => {
-            let (ok, skip): (Vec<&StepFace>, Vec<&StepFace>) =
-                faces.iter().partition(|f| f.is_four_sided_patch());
-            for f in &skip {
-                if let Err(e) = f.patch(&a.file) {
-                    eprintln!("skipped: {e}");
-                }
-            }
-            if ok.is_empty() {
-                return Err(Error::input(
-                    name,
-                    "no face is an untrimmed four-sided B-spline/NURBS patch",
-                ));
-            }
-            ok
-        }
+        None => faces.iter().collect(),
     };
     let mut budget = ellipgrid::case::limits::Budget::default();
     for f in &chosen {
@@ -174,29 +164,83 @@ fn grid(a: &GridArgs) -> Result<()> {
     }
     budget.check_memory(&format!("{name} (--ni, --nj)"))?;
     let (di, dj) = (spacing(a.first_i, a.last_i), spacing(a.first_j, a.last_j));
-    let mut solver = solve::select::by_name(&a.linear).map_err(|m| Error::input("--linear", m))?;
+    solve::select::by_name(&a.linear).map_err(|m| Error::input("--linear", m))?;
+    // Every face on its own (in parallel): one face's failure does not lose the others.
+    let results: Vec<(&StepFace, Result<cad::FaceGrid>)> = chosen
+        .par_iter()
+        .map(|f| {
+            let place = format!("{name}: face {}", f.index);
+            let r = solve::select::by_name(&a.linear)
+                .map_err(|m| Error::input("--linear", m))
+                .and_then(|mut solver| {
+                    cad::grid_face(f, (a.ni, a.nj), &di, &dj, solver.as_mut(), &place)
+                });
+            (*f, r)
+        })
+        .collect();
     let mut blocks = Vec::new();
-    let mut fold = None;
-    for f in chosen {
+    let mut fold: Option<Error> = None;
+    let (mut failed, mut folded) = (Vec::new(), Vec::new());
+    for (f, r) in results {
         let place = format!("{name}: face {}", f.index);
-        let s: &dyn Surface = f.patch(&a.file)?;
-        let r = cad::grid_patch(s, (a.ni, a.nj), &di, &dj, solver.as_mut(), &place)?;
-        let q = quality::quality_surface(&r.grid);
+        let g = match r {
+            Ok(g) => g,
+            Err(e) => {
+                if a.face.is_some() {
+                    return Err(e);
+                }
+                eprintln!("not gridded: {e}");
+                failed.push(f.index);
+                continue;
+            }
+        };
+        let q = quality::quality_surface(&g.result.grid);
         if !a.quiet {
-            println!("face {} ({} × {} nodes):", f.index, a.ni, a.nj);
+            println!(
+                "face {} ({}, {} × {} nodes):",
+                f.index, f.surface_type, a.ni, a.nj
+            );
+            if !g.corner_angles.is_empty() {
+                let angles: Vec<String> =
+                    g.corner_angles.iter().map(|d| format!("{d:.0}°")).collect();
+                println!(
+                    "  corners turning {}; boundary within {:.1e} of the surface",
+                    angles.join(", "),
+                    g.gap
+                );
+            }
             println!("{q}");
         }
         let q = AnyQuality::from(q);
-        if fold.is_none() && q.is_folded() {
-            fold = Some(Error::Folded {
+        if q.is_folded() {
+            let e = Error::Folded {
                 place,
                 count: q.folded_cells(),
                 first: q.folded_list(),
-            });
+            };
+            folded.push(f.index);
+            if !a.allow_folded {
+                // With --all the face is left out; the others are still written.
+                if a.face.is_none() {
+                    eprintln!("not written: {e}");
+                }
+                fold.get_or_insert(e);
+                if a.face.is_none() {
+                    continue;
+                }
+            } else {
+                fold.get_or_insert(e);
+            }
         }
-        blocks.push((format!("face{}", f.index), Block::Surface(r.grid)));
+        blocks.push((format!("face{}", f.index), Block::Surface(g.result.grid)));
     }
-    if fold.is_none() || a.allow_folded {
+    let write = a.face.is_none() || fold.is_none() || a.allow_folded;
+    if blocks.is_empty() {
+        return Err(
+            fold.unwrap_or_else(|| Error::input(&name, "no face could be gridded (reasons above)"))
+        );
+    }
+    if write {
         let written = job::write_outputs(&blocks, &a.output, &Plot3dFormat::default())?;
         if !a.quiet {
             for p in &written {
@@ -204,10 +248,35 @@ fn grid(a: &GridArgs) -> Result<()> {
             }
         }
     }
-    match fold {
-        Some(e) => Err(e),
-        None => Ok(()),
+    if a.face.is_some() {
+        return fold.map_or(Ok(()), Err);
     }
+    let total = chosen.len();
+    if !folded.is_empty() {
+        return Err(Error::Folded {
+            place: name,
+            count: folded.len(),
+            first: format!(
+                "faces {folded:?} (of {total}; {} written{})",
+                blocks.len(),
+                if failed.is_empty() {
+                    String::new()
+                } else {
+                    format!(", faces {failed:?} not gridded")
+                }
+            ),
+        });
+    }
+    if !failed.is_empty() {
+        return Err(Error::input(
+            name,
+            format!(
+                "{} of {total} faces gridded and written; not gridded: faces {failed:?} (reasons above)",
+                blocks.len(),
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn export(net: &Path, block: usize, output: &Path, quiet: bool) -> Result<()> {

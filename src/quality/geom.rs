@@ -194,7 +194,15 @@ pub(super) struct CellEval {
     pub skew: f64,
     /// Longest / shortest edge (∞ with a zero-length edge).
     pub aspect: f64,
+    /// A corner Jacobian ≤ 0 or NaN, other than at a flat corner ([`FLAT`]).
+    pub folded: bool,
 }
+
+/// A corner whose Jacobian is within this of 0 relative to |a| |b|, with both edges of
+/// nonzero length and pointing apart (angle 180° to rounding), is *flat*, not folded: the
+/// degenerate but valid quad at a block corner placed inside a straight edge (a three-sided
+/// CAD face gridded as one block).
+pub(super) const FLAT: f64 = 1e-10;
 
 /// Evaluates a cell with reference normal `n` and orientation sign `s`.
 ///
@@ -207,6 +215,7 @@ pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64) -> CellEval {
     let l: [f64; 4] = std::array::from_fn(|k| norm(e[k]));
     let (mut jmin, mut jmax, mut smin) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
     let (mut tmin, mut tmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut folded = false;
     for k in 0..4 {
         let a = e[k];
         let p = e[(k + 3) % 4];
@@ -220,6 +229,9 @@ pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64) -> CellEval {
         };
         // In-plane cosine part: a·b minus the components along n.
         let c_ab = dot(a, b) - dot(a, n) * dot(b, n);
+        let flat = ll > 0.0 && jac.abs() <= FLAT * ll && dot(a, b) < 0.0;
+        // Written so that a NaN Jacobian counts as folded.
+        folded |= jac.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) && !flat;
         let mut theta = jac.atan2(c_ab).to_degrees();
         if theta < 0.0 {
             theta += 360.0;
@@ -246,5 +258,6 @@ pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64) -> CellEval {
         smin,
         skew,
         aspect,
+        folded,
     }
 }

@@ -20,7 +20,9 @@
 //! [`Orientation::RightHanded`]. **All Jacobians in the report and in the cell fields are relative
 //! to that orientation** (multiplied by −1 for a left-handed grid), so a consistently
 //! left-handed grid is valid with positive Jacobians, and a cell is folded iff one of its corner
-//! Jacobians is ≤ 0 (or NaN). A surface grid has no handedness of its own
+//! Jacobians is ≤ 0 (or NaN), except at a *flat* corner: angle 180° to rounding (|J| ≤ 1e-10
+//! |a| |b|, both edges of nonzero length), the degenerate but valid quad where a block corner
+//! lies inside a straight edge (three-sided CAD faces). A surface grid has no handedness of its own
 //! ([`Orientation::Surface`]); its cell normals come from the grid, and a cell is folded if a
 //! corner Jacobian is ≤ 0 relative to its own normal (bow-tie, non-convex or collapsed cell) or
 //! if its normal points against those of more than half of its edge neighbours (a cell turned
@@ -232,8 +234,7 @@ fn row(nd: &Nodes, j: usize, s: f64) -> CellStats<2> {
         let n = nd.normal(&c);
         let e = eval_cell(&c, n, s);
         a.add(e.jmin, e.jmax, e.smin, e.skew, e.aspect);
-        // Written so that a NaN Jacobian counts as folded.
-        let corner_ok = e.jmin > 0.0;
+        let corner_ok = !e.folded;
         if !corner_ok || (nd.surface && nd.flipped(i, j, n)) {
             a.folded.push([i, j]);
         }

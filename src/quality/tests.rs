@@ -518,3 +518,25 @@ fn large_grid_matches_small_grid_metrics() {
     eprintln!("quality_surface of 10^6 nodes: {:?}", t.elapsed());
     assert_eq!(r.first_folded, vec![[500, 699], [500, 700]]);
 }
+
+#[test]
+fn a_flat_corner_is_degenerate_not_folded_but_a_collapsed_one_folds() {
+    // One cell whose corner (0, 0) lies inside the straight edge from (−1, 0) to (1, 0): the
+    // corner angle is 180° (a block corner placed inside a CAD edge).
+    let flat = Grid2::<2>::from_fn(2, 2, |i, j| {
+        [[0.0, 0.0], [1.0, 0.0], [-1.0, 0.0], [1.0, 1.0]][i + 2 * j]
+    });
+    let q = quality2d(&flat);
+    assert_eq!(q.folded_cells, 0, "{q}");
+    assert!(q.jacobian_min.abs() < 1e-15);
+    // The same corner with its edges pointing the same way (angle 0°): folded.
+    let collapsed = Grid2::<2>::from_fn(2, 2, |i, j| {
+        [[0.0, 0.0], [1.0, 0.0], [0.5, 0.0], [1.0, 1.0]][i + 2 * j]
+    });
+    assert_eq!(quality2d(&collapsed).folded_cells, 1);
+    // A zero-length edge still folds.
+    let short = Grid2::<2>::from_fn(2, 2, |i, j| {
+        [[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [1.0, 1.0]][i + 2 * j]
+    });
+    assert_eq!(quality2d(&short).folded_cells, 1);
+}

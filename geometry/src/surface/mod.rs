@@ -9,7 +9,8 @@
 //! | `hermite` | [`HermiteSurface`]: C¹ bicubic Hermite (Ferguson) patches through a control net |
 //! | `bspline` | [`BSplineSurf`]: fast local evaluation of truck B-spline / NURBS surfaces |
 //! | `analytic` | [`Plane`], [`TanhBump`] (paper Fig. 31), [`Scherk`] minimal surface |
-//! | `project` | [`project`], [`project_to_edge`]: safeguarded Newton for the closest point |
+//! | `project` | [`project`], [`project_within`], [`project_to_edge`]: safeguarded Newton for the closest point |
+//! | `truck` | [`TruckSurface`], [`TruckCurve`]: any truck surface / curve in its own parameters |
 //! | `locate` | [`SurfaceLocator`]: BVH of sampled cells ([`crate::BoxTree`]) + Newton |
 //!
 //! Every impl gives exact derivatives; the tests check them against central differences.
@@ -43,12 +44,14 @@ mod locate;
 mod project;
 #[cfg(test)]
 pub(crate) mod testutil;
+mod truck;
 
 pub use analytic::{scherk_distance, Plane, Scherk, TanhBump};
 pub use bspline::BSplineSurf;
 pub use hermite::HermiteSurface;
 pub use locate::SurfaceLocator;
-pub use project::{project, project_to_edge};
+pub use project::{project, project_to_edge, project_within};
+pub use truck::{TruckCurve, TruckSurface};
 
 use crate::Vec3;
 

@@ -15,6 +15,9 @@ use crate::Vec3;
 const MAX_ITER: usize = 100;
 /// Convergence: |Δu| + |Δv| at most this.
 const STEP_TOL: f64 = 1e-13;
+/// After [`MAX_ITER`] iterations, the answer is still taken if the last step was at most this
+/// (the iteration stalls at the rounding level of the surface evaluation).
+const STALL_TOL: f64 = 1e-9;
 /// Below this step length the Newton step is taken without line search (the quadratic model
 /// is accurate there, while f differences drown in rounding).
 const FREE_STEP: f64 = 1e-8;
@@ -25,18 +28,40 @@ const FREE_STEP: f64 = 1e-8;
 /// Returns `None` if p or the surface is not finite there, or after 100 iterations without
 /// convergence.
 pub fn project(surface: &dyn Surface, p: Vec3, start: (f64, f64)) -> Option<(f64, f64)> {
+    project_within(surface, p, start, [[0.0, 1.0], [0.0, 1.0]])
+}
+
+/// [`project`] within the parameter box `bounds` = [[u_lo, u_hi], [v_lo, v_hi]] (infinite
+/// bounds allowed: CAD surfaces in their own parameters, periodic directions left free so
+/// that the answer continues the start across a seam). Steps are measured relative to
+/// 1 + |u| + |v|, so parameters in millimetres or radians converge alike.
+///
+/// Returns `None` if p or the surface is not finite there, or when 100 iterations end with a
+/// step still above 1e-9 (relative): iterations that stall at the rounding level of the
+/// surface's evaluation (a few 1e-13) are accepted.
+pub fn project_within(
+    surface: &dyn Surface,
+    p: Vec3,
+    start: (f64, f64),
+    bounds: [[f64; 2]; 2],
+) -> Option<(f64, f64)> {
     if !p.iter().all(|c| c.is_finite()) {
         return None;
     }
-    let fix = |t: f64| {
+    let [[ulo, uhi], [vlo, vhi]] = bounds;
+    let fix = |t: f64, lo: f64, hi: f64| {
         if t.is_finite() {
-            t.clamp(0.0, 1.0)
+            t.clamp(lo, hi)
+        } else if lo.is_finite() && hi.is_finite() {
+            0.5 * (lo + hi)
         } else {
-            0.5
+            0.0f64.clamp(lo, hi)
         }
     };
-    let (mut u, mut v) = (fix(start.0), fix(start.1));
+    let (mut u, mut v) = (fix(start.0, ulo, uhi), fix(start.1, vlo, vhi));
+    let mut last = f64::INFINITY;
     for _ in 0..MAX_ITER {
+        let scale = 1.0 + u.abs() + v.abs();
         let s = surface.eval(u, v);
         let r = s.x - p;
         let f = 0.5 * r.norm_squared();
@@ -46,9 +71,9 @@ pub fn project(surface: &dyn Surface, p: Vec3, start: (f64, f64)) -> Option<(f64
         }
         let (a, b, c) = (s.xu.norm_squared(), s.xu.dot(&s.xv), s.xv.norm_squared());
         let full = [a + r.dot(&s.xuu), b + r.dot(&s.xuv), c + r.dot(&s.xvv)];
-        // Active set: freeze a variable at a bound whose descent direction leaves the square.
-        let free_u = !((u <= 0.0 && g[0] > 0.0) || (u >= 1.0 && g[0] < 0.0));
-        let free_v = !((v <= 0.0 && g[1] > 0.0) || (v >= 1.0 && g[1] < 0.0));
+        // Active set: freeze a variable at a bound whose descent direction leaves the box.
+        let free_u = !((u <= ulo && g[0] > 0.0) || (u >= uhi && g[0] < 0.0));
+        let free_v = !((v <= vlo && g[1] > 0.0) || (v >= vhi && g[1] < 0.0));
         let d = newton_step(full, g, free_u, free_v)
             .or_else(|| newton_step([a, b, c], g, free_u, free_v))
             .unwrap_or([0.0, 0.0]);
@@ -56,10 +81,10 @@ pub fn project(surface: &dyn Surface, p: Vec3, start: (f64, f64)) -> Option<(f64
         let mut t = 1.0;
         let (mut un, mut vn);
         loop {
-            un = (u + t * d[0]).clamp(0.0, 1.0);
-            vn = (v + t * d[1]).clamp(0.0, 1.0);
+            un = (u + t * d[0]).clamp(ulo, uhi);
+            vn = (v + t * d[1]).clamp(vlo, vhi);
             let step = (un - u).abs() + (vn - v).abs();
-            if step <= FREE_STEP || t < 1e-12 {
+            if step <= FREE_STEP * scale || t < 1e-12 {
                 break;
             }
             let fnew = 0.5 * (surface.point(un, vn) - p).norm_squared();
@@ -71,11 +96,12 @@ pub fn project(surface: &dyn Surface, p: Vec3, start: (f64, f64)) -> Option<(f64
         let step = (un - u).abs() + (vn - v).abs();
         u = un;
         v = vn;
-        if step <= STEP_TOL {
+        if step <= STEP_TOL * scale {
             return Some((u, v));
         }
+        last = step / scale;
     }
-    None
+    (last <= STALL_TOL).then_some((u, v))
 }
 
 /// Solves H_ff d_f = −g_f over the free variables; `None` if that block is not positive
@@ -103,7 +129,9 @@ fn newton_step(h: [f64; 3], g: [f64; 2], free_u: bool, free_v: bool) -> Option<[
 /// Newton from `start` (Gauss–Newton where the curvature term makes the Hessian non-positive,
 /// clamping to [0, 1], backtracking while steps are large).
 ///
-/// Returns `None` if p is not finite, the curve is not finite there, or after 100 iterations.
+/// Returns `None` if p is not finite, the curve is not finite there, or when 100 iterations
+/// end with a step above 1e-9 (stalling at the rounding level is accepted, as in
+/// [`project_within`]).
 pub fn project_to_edge(
     surface: &dyn Surface,
     edge: SurfaceEdge,
@@ -122,6 +150,7 @@ pub fn project_to_edge(
         let (u, v) = edge.uv(t);
         0.5 * (surface.point(u, v) - p).norm_squared()
     };
+    let mut last = f64::INFINITY;
     for _ in 0..MAX_ITER {
         let (x, c1, c2) = edge.curve(surface, t);
         let r = x - p;
@@ -153,8 +182,9 @@ pub fn project_to_edge(
         if step <= STEP_TOL {
             return Some(t);
         }
+        last = step;
     }
-    None
+    (last <= STALL_TOL).then_some(t)
 }
 
 #[cfg(test)]

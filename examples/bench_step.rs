@@ -1,0 +1,195 @@
+//! Real-CAD benchmark (issue #14): every face of every STEP file of a corpus directory gridded
+//! as `ellipgrid step grid --all` does, each file with a time limit; prints per file, per CAD
+//! system and per surface type how many faces were gridded fold-free, and the commonest
+//! reasons for the others.
+//!
+//! The corpus is not in the repository (licences vary): see `bench/step_corpus.md` for its
+//! files, their sources (repository, commit, path, SHA-256) and how to fetch them.
+//!
+//! ```text
+//! cargo run --release --example bench_step -- /work/corpus/step [--n 33] [--timeout 60]
+//! ```
+
+use ellipgrid::cad::{grid_face, read_step_faces, Route};
+use ellipgrid::case::DistributionSpec;
+use ellipgrid::quality;
+use ellipgrid::quality::quality3d::AnyQuality;
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+#[derive(Clone, Debug)]
+enum Outcome {
+    Ok,
+    Folded,
+    Refused(String),
+    Failed(String),
+}
+
+/// A reason with numbers blanked, so that like reasons group.
+fn class(m: &str) -> String {
+    let tail = m.rsplit(": face ").next().unwrap_or(m);
+    let tail = tail.split_once(": ").map_or(tail, |x| x.1);
+    let mut out = String::new();
+    let mut digit = false;
+    for c in tail.chars() {
+        if c.is_ascii_digit() || (digit && (c == '.' || c == 'e' || c == '-')) {
+            if !digit {
+                out.push('#');
+            }
+            digit = true;
+        } else {
+            digit = false;
+            out.push(c);
+        }
+    }
+    out.chars().take(110).collect()
+}
+
+fn grid_file(path: PathBuf, n: usize) -> Result<Vec<(&'static str, Outcome)>, String> {
+    let faces = read_step_faces(&path).map_err(|e| e.to_string())?;
+    let d = DistributionSpec::Uniform {};
+    Ok(faces
+        .par_iter()
+        .map(|f| {
+            let o = match f.route() {
+                Route::Refused(why) => Outcome::Refused(why),
+                _ => {
+                    let mut solver = ellipgrid::solve::select::by_name("direct").unwrap();
+                    match grid_face(f, (n, n), &d, &d, solver.as_mut(), "") {
+                        Ok(g) => {
+                            let q = AnyQuality::from(quality::quality_surface(&g.result.grid));
+                            if q.is_folded() {
+                                Outcome::Folded
+                            } else {
+                                Outcome::Ok
+                            }
+                        }
+                        Err(e) => Outcome::Failed(e.to_string()),
+                    }
+                }
+            };
+            (f.surface_type, o)
+        })
+        .collect())
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let dir = PathBuf::from(args.first().map_or("/work/corpus/step", |s| s.as_str()));
+    let opt = |name: &str, default: u64| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|k| args.get(k + 1))
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let (n, timeout) = (opt("--n", 33) as usize, opt("--timeout", 60));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("corpus directory")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))
+        })
+        .collect();
+    files.sort();
+    let mut by_system: BTreeMap<String, [usize; 3]> = BTreeMap::new();
+    let mut by_type: BTreeMap<&str, [usize; 3]> = BTreeMap::new();
+    let mut reasons: BTreeMap<String, usize> = BTreeMap::new();
+    let (mut all, mut ok_all, mut slowest) = (0, 0, (0.0, String::new()));
+    println!("{n} × {n} nodes per face, time limit {timeout} s per file\n");
+    println!(
+        "{:<42} {:>6} {:>6} {:>6} {:>7} {:>6} {:>8}",
+        "file", "faces", "ok", "folded", "refused", "failed", "seconds"
+    );
+    for path in files {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let system = name.split('_').nth(1).unwrap_or("?").to_string();
+        let (tx, rx) = mpsc::channel();
+        let t0 = Instant::now();
+        let p = path.clone();
+        std::thread::spawn(move || {
+            let _ = tx.send(grid_file(p, n));
+        });
+        let r = rx.recv_timeout(Duration::from_secs(timeout));
+        let secs = t0.elapsed().as_secs_f64();
+        if secs > slowest.0 {
+            slowest = (secs, name.clone());
+        }
+        let faces = match r {
+            Err(_) => {
+                println!("{name:<42} TIMEOUT after {secs:.0} s");
+                *reasons.entry("file: time limit".into()).or_default() += 1;
+                continue;
+            }
+            Ok(Err(e)) => {
+                println!("{name:<42} not read: {}", class(&e));
+                *reasons.entry(format!("file: {}", class(&e))).or_default() += 1;
+                continue;
+            }
+            Ok(Ok(f)) => f,
+        };
+        let count = |f: fn(&Outcome) -> bool| faces.iter().filter(|x| f(&x.1)).count();
+        let ok = count(|o| matches!(o, Outcome::Ok));
+        let folded = count(|o| matches!(o, Outcome::Folded));
+        let refused = count(|o| matches!(o, Outcome::Refused(_)));
+        let failed = count(|o| matches!(o, Outcome::Failed(_)));
+        println!(
+            "{name:<42} {:>6} {ok:>6} {folded:>6} {refused:>7} {failed:>6} {secs:>8.2}",
+            faces.len()
+        );
+        all += faces.len();
+        ok_all += ok;
+        let s = by_system.entry(system).or_default();
+        s[0] += faces.len();
+        s[1] += ok;
+        for (ty, o) in &faces {
+            let t = by_type.entry(ty).or_default();
+            t[0] += 1;
+            if matches!(o, Outcome::Ok) {
+                t[1] += 1;
+            }
+            let key = match o {
+                Outcome::Ok => continue,
+                Outcome::Folded => "folded".to_string(),
+                Outcome::Refused(m) => format!("refused: {}", class(m)),
+                Outcome::Failed(m) => format!("failed: {}", class(m)),
+            };
+            *reasons.entry(key).or_default() += 1;
+        }
+    }
+    let pct = |a: usize, b: usize| 100.0 * a as f64 / b.max(1) as f64;
+    println!(
+        "\nall: {ok_all} of {all} faces gridded fold-free ({:.1} %); slowest file {:.2} s ({})",
+        pct(ok_all, all),
+        slowest.0,
+        slowest.1
+    );
+    println!("\nby CAD system:");
+    for (s, c) in &by_system {
+        println!(
+            "  {s:<16} {:>5} of {:>5} ({:>5.1} %)",
+            c[1],
+            c[0],
+            pct(c[1], c[0])
+        );
+    }
+    println!("\nby surface type:");
+    for (s, c) in &by_type {
+        println!(
+            "  {s:<16} {:>5} of {:>5} ({:>5.1} %)",
+            c[1],
+            c[0],
+            pct(c[1], c[0])
+        );
+    }
+    let mut r: Vec<_> = reasons.into_iter().collect();
+    r.sort_by_key(|x| std::cmp::Reverse(x.1));
+    println!("\nreasons (faces):");
+    for (m, c) in r.iter().take(25) {
+        println!("  {c:>5}  {m}");
+    }
+}

@@ -1,0 +1,427 @@
+//! A face's boundary loop on its surface (METHOD.md §5 step 1 for a trimmed face): every edge's
+//! (u, v) found by closest-point projection and continued across seams, four corners picked on
+//! the loop, and the loop's four sides (chains of edges, or parts of one) sampled at given
+//! fractions of their 3D arclength.
+
+use super::edge::knots;
+use super::LoopEdge;
+use ellipgrid_geometry::{
+    project_within, ArclengthMap, Curve, Surface, TruckCurve, TruckSurface, Vec3,
+};
+use truck_geometry::prelude::{ParametricSurface, Point3, SearchNearestParameter, D2};
+use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
+
+/// A CAD surface in its own parameters.
+pub(super) type CadSurface = TruckSurface<StepSurface>;
+
+/// Samples per edge of the loop polygon in (u, v) (hints, orientation, closure).
+const NS: usize = 32;
+/// An edge shorter than this fraction of the loop is degenerate (a pole or collapsed side).
+const DEGENERATE: f64 = 1e-9;
+
+/// One oriented edge of the loop with its arclength table and its (u, v) samples.
+struct LoopCurve {
+    curve: TruckCurve<Curve3D>,
+    map: ArclengthMap,
+    /// (u, v) at the normalized arclengths k / NS, k = 0..=NS.
+    uv: Vec<[f64; 2]>,
+}
+
+/// A point of the loop: edge `edge` at normalized arclength `sigma` of that edge.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct LoopPoint {
+    pub edge: usize,
+    pub sigma: f64,
+}
+
+/// A face's boundary loop on its surface.
+pub(super) struct FaceLoop<'a> {
+    surface: &'a CadSurface,
+    bounds: [[f64; 2]; 2],
+    periods: [Option<f64>; 2],
+    edges: Vec<LoopCurve>,
+    /// Largest distance between a sampled boundary point and the surface.
+    pub gap: f64,
+    /// Distance beyond which a boundary point is "not on the surface".
+    tol: f64,
+}
+
+/// Shifts periodic parameters of `uv` by whole periods to lie nearest `near`.
+fn unwrap(mut uv: [f64; 2], near: [f64; 2], periods: [Option<f64>; 2]) -> [f64; 2] {
+    for d in 0..2 {
+        if let Some(t) = periods[d].filter(|t| *t > 0.0) {
+            uv[d] += t * ((near[d] - uv[d]) / t).round();
+        }
+    }
+    uv
+}
+
+impl<'a> FaceLoop<'a> {
+    /// Samples the loop's edges and finds their (u, v) on `surface`; `bounds` is the box
+    /// the projection may move in. A boundary point farther than `tol_rel` times the loop's
+    /// size from the surface is an error.
+    ///
+    /// # Errors
+    /// The reason, naming the edge (1-based in loop order): unbounded or degenerate edges,
+    /// edges off the surface, edges that do not meet, a loop that winds around the surface.
+    pub fn new(
+        surface: &'a CadSurface,
+        edges: &[LoopEdge],
+        bounds: [[f64; 2]; 2],
+        tol_rel: f64,
+    ) -> Result<FaceLoop<'a>, String> {
+        if edges.is_empty() {
+            return Err("the boundary loop has no edges".into());
+        }
+        let mut curves = Vec::with_capacity(edges.len());
+        for (n, e) in edges.iter().enumerate() {
+            let curve = TruckCurve::on(e.curve.clone(), e.range, e.forward, &knots(&e.curve))
+                .ok_or_else(|| format!("boundary edge {} is unbounded", n + 1))?;
+            let map = ArclengthMap::new(&curve);
+            if !map.length().is_finite() {
+                return Err(format!("boundary edge {} has no finite length", n + 1));
+            }
+            curves.push((curve, map));
+        }
+        let total: f64 = curves.iter().map(|c| c.1.length()).sum();
+        if let Some(n) = curves
+            .iter()
+            .position(|c| c.1.length() <= DEGENERATE * total)
+        {
+            return Err(format!(
+                "boundary edge {} has zero length (a pole or collapsed side: not supported yet)",
+                n + 1
+            ));
+        }
+        let pts: Vec<Vec<Vec3>> = curves
+            .iter()
+            .map(|(c, m)| {
+                (0..=NS)
+                    .map(|k| c.point(m.param_at(k as f64 / NS as f64)))
+                    .collect()
+            })
+            .collect();
+        let (lo, hi) = pts.iter().flatten().fold(
+            (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+        );
+        let size = (hi - lo).norm();
+        let mut lp = FaceLoop {
+            surface,
+            bounds,
+            periods: surface.periods(),
+            edges: Vec::new(),
+            gap: 0.0,
+            tol: tol_rel * size,
+        };
+        let n = curves.len();
+        for k in 0..n {
+            let next = &pts[(k + 1) % n][0];
+            let miss = (pts[k][NS] - next).norm();
+            if miss > lp.tol {
+                return Err(format!(
+                    "boundary edges {} and {} do not meet (gap {miss:.3e})",
+                    k + 1,
+                    (k + 1) % n + 1
+                ));
+            }
+        }
+        let mut prev = lp.initial_uv(pts[0][0])?;
+        let first = prev;
+        for (k, ((curve, map), p)) in curves.into_iter().zip(&pts).enumerate() {
+            let mut uv = Vec::with_capacity(NS + 1);
+            for x in p {
+                let q = lp.project(*x, prev, k)?;
+                uv.push(q);
+                prev = q;
+            }
+            lp.edges.push(LoopCurve { curve, map, uv });
+        }
+        // Closure: back at the start in (u, v), not a period away.
+        let scale = lp.metric_scale();
+        let miss = (0..2)
+            .map(|c| ((prev[c] - first[c]) * scale[c]).abs())
+            .fold(0.0, f64::max);
+        if miss > 1e-3 * size.max(f64::MIN_POSITIVE) {
+            return Err(
+                "the boundary loop winds around the surface (a closed band without a seam edge, \
+                 or a cap around a pole): not one block face"
+                    .into(),
+            );
+        }
+        Ok(lp)
+    }
+
+    /// (u, v) of a first boundary point without a nearby start: truck's search, else a
+    /// coarse search over the surface's bounded parameter box; then Newton.
+    fn initial_uv(&self, x: Vec3) -> Result<[f64; 2], String> {
+        let p = Point3::new(x.x, x.y, x.z);
+        let found = super::quietly(|| {
+            SearchNearestParameter::<D2>::search_nearest_parameter(&self.surface.0, p, None, 100)
+        })
+        .ok()
+        .flatten();
+        let start = found.or_else(|| {
+            let [[u0, u1], [v0, v1]] = self.search_box()?;
+            let mut best = (f64::INFINITY, (u0, v0));
+            for i in 0..=32 {
+                for j in 0..=32 {
+                    let (u, v) = (
+                        u0 + (u1 - u0) * i as f64 / 32.0,
+                        v0 + (v1 - v0) * j as f64 / 32.0,
+                    );
+                    let d = (self.surface.point(u, v) - x).norm();
+                    if d < best.0 {
+                        best = (d, (u, v));
+                    }
+                }
+            }
+            Some(best.1)
+        });
+        let start = start.ok_or("no start for the projection onto the surface")?;
+        let (u, v) = project_within(self.surface, x, start, self.bounds)
+            .ok_or("the projection of the boundary onto the surface did not converge")?;
+        Ok([u, v])
+    }
+
+    /// The parameter box for a coarse search: bounded directions, one period of periodic ones.
+    fn search_box(&self) -> Option<[[f64; 2]; 2]> {
+        let (ru, rv) = self.surface.0.try_range_tuple();
+        let r = [ru, rv];
+        let mut b = [[0.0; 2]; 2];
+        for d in 0..2 {
+            b[d] = match (self.periods[d], r[d]) {
+                (Some(t), _) => [0.0, t],
+                (None, Some((lo, hi))) if lo.is_finite() && hi.is_finite() => [lo, hi],
+                _ => return None,
+            };
+        }
+        Some(b)
+    }
+
+    /// (u, v) of boundary point `x` of edge `k` by Newton from `near`, continued across seams.
+    fn project(&mut self, x: Vec3, near: [f64; 2], k: usize) -> Result<[f64; 2], String> {
+        let (u, v) =
+            project_within(self.surface, x, (near[0], near[1]), self.bounds).ok_or_else(|| {
+                format!(
+                    "boundary edge {}: the projection onto the surface did not converge",
+                    k + 1
+                )
+            })?;
+        let uv = unwrap([u, v], near, self.periods);
+        let gap = (self.surface.point(uv[0], uv[1]) - x).norm();
+        if gap.is_nan() || gap > self.tol {
+            return Err(format!(
+                "boundary edge {} lies {gap:.3e} from the face's surface (tolerance {:.3e})",
+                k + 1,
+                self.tol
+            ));
+        }
+        self.gap = self.gap.max(gap);
+        Ok(uv)
+    }
+
+    /// Number of edges.
+    pub fn len(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// Length of edge `k`.
+    fn length(&self, k: usize) -> f64 {
+        self.edges[k].map.length()
+    }
+
+    /// Mean |x_u| and |x_v| over the samples: scales that make (u, v) lengths ≈ 3D lengths.
+    pub fn metric_scale(&self) -> [f64; 2] {
+        let mut sum = [0.0; 2];
+        let mut count = 0.0f64;
+        for e in &self.edges {
+            for q in &e.uv {
+                let s = self.surface.eval(q[0], q[1]);
+                sum[0] += s.xu.norm();
+                sum[1] += s.xv.norm();
+                count += 1.0;
+            }
+        }
+        sum.map(|v| {
+            let m = v / count.max(1.0);
+            if m.is_finite() && m > 0.0 {
+                m
+            } else {
+                1.0
+            }
+        })
+    }
+
+    /// Signed area of the loop's polygon in (u, v) scaled by `scale`: positive if the loop
+    /// runs counterclockwise.
+    pub fn signed_area(&self, scale: [f64; 2]) -> f64 {
+        let pts: Vec<[f64; 2]> = self
+            .edges
+            .iter()
+            .flat_map(|e| e.uv[..NS].iter())
+            .map(|q| [q[0] * scale[0], q[1] * scale[1]])
+            .collect();
+        let n = pts.len();
+        0.5 * (0..n)
+            .map(|i| {
+                let (a, b) = (pts[i], pts[(i + 1) % n]);
+                a[0] * b[1] - a[1] * b[0]
+            })
+            .sum::<f64>()
+    }
+
+    /// Turning angle (radians, 0 = straight on) of the loop at the start of edge `k`.
+    fn turning(&self, k: usize) -> f64 {
+        let n = self.len();
+        let a = &self.edges[(k + n - 1) % n].curve;
+        let b = &self.edges[k].curve;
+        let (ta, tb) = (a.derivative(1.0), b.derivative(0.0));
+        let c = ta.dot(&tb) / (ta.norm() * tb.norm());
+        if c.is_finite() {
+            c.clamp(-1.0, 1.0).acos()
+        } else {
+            0.0
+        }
+    }
+
+    /// Four corners in loop order: the four vertices where the loop turns most, or, with
+    /// fewer than four vertices, the vertices plus midpoints (by arclength) of the longest
+    /// stretches between them. Returns the corners and their turning angles (degrees).
+    pub fn corners(&self) -> ([LoopPoint; 4], [f64; 4]) {
+        let n = self.len();
+        let mut pts: Vec<LoopPoint> = if n >= 4 {
+            let mut by_angle: Vec<(usize, f64)> = (0..n).map(|k| (k, self.turning(k))).collect();
+            by_angle.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+            let mut ks: Vec<usize> = by_angle[..4].iter().map(|p| p.0).collect();
+            ks.sort_unstable();
+            ks.into_iter()
+                .map(|edge| LoopPoint { edge, sigma: 0.0 })
+                .collect()
+        } else {
+            (0..n).map(|edge| LoopPoint { edge, sigma: 0.0 }).collect()
+        };
+        while pts.len() < 4 {
+            // Split the longest stretch between consecutive points at its middle.
+            let m = pts.len();
+            let (k, len) = (0..m)
+                .map(|k| (k, self.chain_length(pts[k], pts[(k + 1) % m])))
+                .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
+            let mid = self.advance(pts[k], 0.5 * len);
+            pts.insert(k + 1, mid);
+        }
+        // Rotate so that the first corner is the earliest in loop order.
+        pts.sort_by(|a, b| (a.edge, a.sigma).partial_cmp(&(b.edge, b.sigma)).unwrap());
+        let angles = pts.iter().map(|p| {
+            if p.sigma == 0.0 {
+                self.turning(p.edge).to_degrees()
+            } else {
+                0.0
+            }
+        });
+        let mut a = [0.0; 4];
+        for (d, s) in a.iter_mut().zip(angles) {
+            *d = s;
+        }
+        ([pts[0], pts[1], pts[2], pts[3]], a)
+    }
+
+    /// The pieces (edge, σ from, σ to) of the loop from `a` forwards to `b`.
+    fn chain(&self, a: LoopPoint, b: LoopPoint) -> Vec<(usize, f64, f64)> {
+        let n = self.len();
+        if a.edge == b.edge && a.sigma < b.sigma {
+            return vec![(a.edge, a.sigma, b.sigma)];
+        }
+        let mut out = Vec::new();
+        if a.sigma < 1.0 {
+            out.push((a.edge, a.sigma, 1.0));
+        }
+        let mut k = (a.edge + 1) % n;
+        while k != b.edge {
+            out.push((k, 0.0, 1.0));
+            k = (k + 1) % n;
+        }
+        if b.sigma > 0.0 {
+            out.push((b.edge, 0.0, b.sigma));
+        }
+        out
+    }
+
+    /// Arclength from `a` forwards to `b`.
+    pub fn chain_length(&self, a: LoopPoint, b: LoopPoint) -> f64 {
+        self.chain(a, b)
+            .iter()
+            .map(|&(k, s0, s1)| (s1 - s0) * self.length(k))
+            .sum()
+    }
+
+    /// The loop point `s` (arclength) forwards from `a`.
+    fn advance(&self, a: LoopPoint, mut s: f64) -> LoopPoint {
+        let n = self.len();
+        let mut p = a;
+        for _ in 0..=n {
+            let rest = (1.0 - p.sigma) * self.length(p.edge);
+            if s < rest {
+                return LoopPoint {
+                    edge: p.edge,
+                    sigma: p.sigma + s / self.length(p.edge),
+                };
+            }
+            s -= rest;
+            p = LoopPoint {
+                edge: (p.edge + 1) % n,
+                sigma: 0.0,
+            };
+        }
+        p
+    }
+
+    /// Points and their (u, v) at the fractions `f` ∈ [0, 1] of the 3D arclength along the
+    /// loop from `a` forwards to `b`.
+    ///
+    /// # Errors
+    /// A point off the surface or a projection that fails, naming the edge.
+    pub fn sample(
+        &mut self,
+        a: LoopPoint,
+        b: LoopPoint,
+        f: &[f64],
+    ) -> Result<(Vec<Vec3>, Vec<[f64; 2]>), String> {
+        let pieces = self.chain(a, b);
+        let lens: Vec<f64> = pieces
+            .iter()
+            .map(|&(k, s0, s1)| (s1 - s0) * self.length(k))
+            .collect();
+        let total: f64 = lens.iter().sum();
+        let mut xs = Vec::with_capacity(f.len());
+        let mut uvs = Vec::with_capacity(f.len());
+        for &fr in f {
+            let mut s = fr.clamp(0.0, 1.0) * total;
+            let mut at = pieces.len() - 1;
+            for (i, l) in lens.iter().enumerate() {
+                if s <= *l || i + 1 == lens.len() {
+                    at = i;
+                    break;
+                }
+                s -= l;
+            }
+            let (k, s0, s1) = pieces[at];
+            let sigma = if lens[at] > 0.0 {
+                (s0 + (s1 - s0) * (s / lens[at]).clamp(0.0, 1.0)).clamp(0.0, 1.0)
+            } else {
+                s0
+            };
+            let e = &self.edges[k];
+            let x = e.curve.point(e.map.param_at(sigma));
+            // Start from the samples' (u, v), interpolated at σ.
+            let pos = sigma * NS as f64;
+            let i = (pos.floor() as usize).min(NS - 1);
+            let w = pos - i as f64;
+            let hint = [0, 1].map(|c| (1.0 - w) * e.uv[i][c] + w * e.uv[i + 1][c]);
+            let uv = self.project(x, hint, k)?;
+            xs.push(x);
+            uvs.push(uv);
+        }
+        Ok((xs, uvs))
+    }
+}

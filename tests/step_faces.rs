@@ -1,0 +1,290 @@
+//! Real-CAD faces (issue #14) from the small STEP files in `data/step/` (made by OpenCascade,
+//! `data/step/README.md`): analytic and trimmed faces gridded as block faces. Known answers:
+//! every node on the analytic surface, boundary nodes on the edges, the grid's area converging
+//! to the exact area at second order (error ratio ≈ 4 per halving), no folds.
+
+mod common;
+use common::{ellipgrid, root, text};
+use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid, Route};
+use ellipgrid::case::DistributionSpec;
+use ellipgrid::grid::Grid2;
+use ellipgrid::quality;
+use ellipgrid::quality::quality3d::AnyQuality;
+use ellipgrid::solve::direct::DirectLu;
+use std::f64::consts::PI;
+
+fn file(name: &str) -> std::path::PathBuf {
+    root().join("data/step").join(name)
+}
+
+/// Face `k` (1-based) of a test file gridded with n × n uniform nodes.
+fn grid(name: &str, k: usize, n: usize) -> FaceGrid {
+    let faces = read_step_faces(&file(name)).unwrap();
+    let d = DistributionSpec::Uniform {};
+    grid_face(&faces[k - 1], (n, n), &d, &d, &mut DirectLu::new(), name)
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn node(g: &Grid2<3>, p: usize) -> [f64; 3] {
+    [g.coord(0)[p], g.coord(1)[p], g.coord(2)[p]]
+}
+
+/// Σ ½ |d₁ × d₂| over the cells (exact for planar quads).
+fn area(g: &Grid2<3>) -> f64 {
+    let (ni, nj) = (g.ni(), g.nj());
+    let mut a = 0.0;
+    for j in 0..nj - 1 {
+        for i in 0..ni - 1 {
+            let p = |ii: usize, jj: usize| node(g, ii + ni * jj);
+            let (x0, x1, x2, x3) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
+            let d1 = [x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]];
+            let d2 = [x3[0] - x1[0], x3[1] - x1[1], x3[2] - x1[2]];
+            let c = [
+                d1[1] * d2[2] - d1[2] * d2[1],
+                d1[2] * d2[0] - d1[0] * d2[2],
+                d1[0] * d2[1] - d1[1] * d2[0],
+            ];
+            a += 0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        }
+    }
+    a
+}
+
+fn unfolded(g: &Grid2<3>) -> bool {
+    !AnyQuality::from(quality::quality_surface(g)).is_folded()
+}
+
+/// Grids at 9, 17, 33 nodes: fold-free, every node within 1e-11 of the surface (`dist`),
+/// area errors falling by 3.3–5 per halving of the spacing. Returns the errors.
+fn converges(name: &str, exact: f64, dist: impl Fn([f64; 3]) -> f64) -> Vec<f64> {
+    let mut errs = Vec::new();
+    for n in [9, 17, 33] {
+        let g = grid(name, 1, n);
+        let grid = &g.result.grid;
+        assert!(unfolded(grid), "{name} {n}: folded");
+        let worst = (0..grid.len())
+            .map(|p| dist(node(grid, p)))
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 1e-11,
+            "{name} {n}: a node lies {worst:e} off the surface"
+        );
+        errs.push((area(grid) - exact).abs() / exact);
+    }
+    for w in errs.windows(2) {
+        let r = w[0] / w[1];
+        assert!(
+            (3.3..5.0).contains(&r),
+            "{name}: area errors {errs:?}, ratio {r}"
+        );
+    }
+    errs
+}
+
+fn radius_xy(p: [f64; 3]) -> f64 {
+    (p[0] * p[0] + p[1] * p[1]).sqrt()
+}
+
+#[test]
+fn cylinder_patch_and_band_lie_on_the_cylinder_and_converge_in_area() {
+    converges("cylinder_patch.step", 3.0 * PI, |p| {
+        let outside = (-p[0]).max(-p[1]).max(-p[2]).max(p[2] - 3.0).max(0.0);
+        (radius_xy(p) - 2.0).abs() + outside
+    });
+    // The band with its seam edge (loop: circle, seam, circle, seam reversed): closed in u.
+    converges("cylinder_band.step", 4.0 * PI, |p| {
+        (radius_xy(p) - 1.0).abs() + (-p[2]).max(p[2] - 2.0).max(0.0)
+    });
+}
+
+#[test]
+fn cone_sphere_and_torus_faces_lie_on_their_surfaces_and_converge_in_area() {
+    converges("cone_patch.step", 1.5 * PI * 5f64.sqrt(), |p| {
+        (radius_xy(p) - (2.0 - p[2] / 2.0)).abs() + (-p[1]).max(0.0)
+    });
+    let band = 2.0 * PI * 1.5 * 1.5 * ((PI / 4.0).sin() + (PI / 6.0).sin());
+    converges("sphere_band.step", band, |p| {
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        (r - 1.5).abs()
+    });
+    converges("torus_patch.step", 1.5 * PI * PI, |p| {
+        ((radius_xy(p) - 3.0).powi(2) + p[2] * p[2]).sqrt() - 1.0
+    });
+}
+
+#[test]
+fn trimmed_bspline_face_lies_on_the_surface_with_its_boundary_on_the_trim() {
+    let errs = converges("nurbs_trimmed4.step", 6.19992114, |p| {
+        (p[2] - 0.1 * (p[0] * p[0] - p[1] * p[1])).abs()
+    });
+    assert!(errs[2] < 1e-3, "{errs:?}");
+    // Boundary nodes on the trim quadrilateral (in x, y), corners at its corners.
+    let q = [[-1.5, -1.2], [1.4, -1.0], [1.2, 1.5], [-1.0, 1.1]];
+    let g = grid("nurbs_trimmed4.step", 1, 17).result.grid;
+    let (ni, nj) = (g.ni(), g.nj());
+    let on_trim = |x: [f64; 3]| {
+        (0..4)
+            .map(|k| {
+                let (a, b) = (q[k], q[(k + 1) % 4]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let t = (((x[0] - a[0]) * dx + (x[1] - a[1]) * dy) / (dx * dx + dy * dy))
+                    .clamp(0.0, 1.0);
+                ((a[0] + t * dx - x[0]).powi(2) + (a[1] + t * dy - x[1]).powi(2)).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    for p in 0..g.len() {
+        let (i, j) = (p % ni, p / ni);
+        if i == 0 || j == 0 || i + 1 == ni || j + 1 == nj {
+            let d = on_trim(node(&g, p));
+            assert!(
+                d < 1e-10,
+                "boundary node ({i}, {j}) lies {d:e} off the trim"
+            );
+        }
+    }
+    for p in [0, ni - 1, ni * nj - 1, ni * (nj - 1)] {
+        let x = node(&g, p);
+        let c = q
+            .iter()
+            .map(|c| ((c[0] - x[0]).powi(2) + (c[1] - x[1]).powi(2)).sqrt())
+            .fold(f64::INFINITY, f64::min);
+        assert!(c < 1e-10, "grid corner {x:?} is not a trim corner");
+    }
+}
+
+#[test]
+fn five_edges_group_into_four_sides_at_the_sharpest_corners() {
+    let g = grid("plane_pentagon.step", 1, 17);
+    let grid = &g.result.grid;
+    assert!(unfolded(grid));
+    // The nearly flat vertex (2, 3.2) is not a corner; the other four are.
+    let (ni, nj) = (grid.ni(), grid.nj());
+    let mut corners: Vec<[i64; 2]> = [0, ni - 1, ni * nj - 1, ni * (nj - 1)]
+        .iter()
+        .map(|&p| {
+            let x = node(grid, p);
+            [(x[0] * 1e6).round() as i64, (x[1] * 1e6).round() as i64]
+        })
+        .collect();
+    corners.sort();
+    let want = [
+        [0, 0],
+        [0, 3_000_000],
+        [4_000_000, 0],
+        [4_000_000, 3_000_000],
+    ];
+    assert_eq!(corners, want);
+    assert!(
+        g.corner_angles.iter().all(|a| (a - 90.0).abs() < 10.0),
+        "{:?}",
+        g.corner_angles
+    );
+    // Planar, and the flat vertex is the middle node of its side (its two edges are equally
+    // long): the area is the polygon's.
+    let a = area(grid);
+    assert!((a - 12.4).abs() < 1e-12, "{a}");
+}
+
+#[test]
+fn a_concave_trim_is_gridded_without_folds() {
+    let exact = 2.98074213;
+    converges("plane_nonconvex.step", exact, |p| p[2].abs());
+}
+
+#[test]
+fn faces_with_holes_are_refused_and_the_rest_of_the_part_is_gridded() {
+    let faces = read_step_faces(&file("plate_with_holes.step")).unwrap();
+    assert_eq!(faces.len(), 9);
+    let refused: Vec<usize> = faces
+        .iter()
+        .filter(|f| matches!(f.route(), Route::Refused(_)))
+        .map(|f| f.index)
+        .collect();
+    assert_eq!(refused, [2, 5]);
+    let types: Vec<&str> = faces.iter().map(|f| f.surface_type).collect();
+    assert_eq!(types.iter().filter(|t| **t == "cylinder").count(), 3);
+    // Through the CLI: seven faces written, the two with holes named, exit code 2.
+    let dir = tempfile::tempdir().unwrap();
+    let step = file("plate_with_holes.step");
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step",
+            "grid",
+            step.to_str().unwrap(),
+            "--all",
+            "--ni",
+            "9",
+            "--nj",
+            "9",
+            "-o",
+            "plate.x",
+        ],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(t.contains("face 2: 3 boundary loops (holes)"), "{t}");
+    assert!(t.contains("7 of 9 faces gridded and written"), "{t}");
+    let written = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("plate.x")).unwrap();
+    assert_eq!(written.blocks.len(), 7);
+    // `step list` says how each face is gridded.
+    let o = ellipgrid(dir.path(), &["step", "list", step.to_str().unwrap()]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(
+        t.contains("face 3: cylinder, block face: one loop of 4 edges"),
+        "{t}"
+    );
+    assert!(
+        t.contains("face 5: plane, not gridable: 3 boundary loops"),
+        "{t}"
+    );
+}
+
+#[test]
+fn a_face_with_a_hole_alone_exits_2_without_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let step = file("box_with_hole_face.step");
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step",
+            "grid",
+            step.to_str().unwrap(),
+            "--face",
+            "1",
+            "-o",
+            "h.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("holes"));
+    assert!(!dir.path().join("h.x").exists());
+}
+
+#[test]
+fn a_three_sided_face_gets_its_fourth_corner_in_the_middle_of_its_longest_edge() {
+    // The triangle (0, 0), (3, 0), (0, 2): corners at its vertices and at the middle of the
+    // hypotenuse, whose cells are flat there (180°), not folded. Straight edges: the area
+    // is exact at any resolution.
+    for n in [9, 17, 33] {
+        let g = grid("plane_triangle.step", 1, n).result.grid;
+        assert!(unfolded(&g));
+        assert!((area(&g) - 3.0).abs() < 1e-12, "{n}: {}", area(&g));
+    }
+    let g = grid("plane_triangle.step", 1, 17);
+    let grid = &g.result.grid;
+    let (ni, nj) = (grid.ni(), grid.nj());
+    let corners: Vec<[f64; 3]> = [0, ni - 1, ni * nj - 1, ni * (nj - 1)]
+        .iter()
+        .map(|&p| node(grid, p))
+        .collect();
+    let mid = corners
+        .iter()
+        .filter(|c| (c[0] - 1.5).abs() < 1e-12 && (c[1] - 1.0).abs() < 1e-12)
+        .count();
+    assert_eq!(mid, 1, "{corners:?}");
+    let flat = g.corner_angles.iter().filter(|a| **a == 0.0).count();
+    assert_eq!(flat, 1, "{:?}", g.corner_angles);
+}
