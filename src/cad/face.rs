@@ -255,6 +255,38 @@ fn boundary(
         points[e.index()] = x;
         uv[e.index()] = w;
     }
+    // Each corner ends two block edges, sampled on two CAD edges that meet there only to the
+    // file's tolerance: one point and one (u, v) for both (their mean).
+    let last = |e: Edge| match e {
+        Edge::E1 | Edge::E2 => nj - 1,
+        Edge::E3 | Edge::E4 => ni - 1,
+    };
+    let corners = [
+        ((Edge::E1, 0), (Edge::E3, 0)),
+        ((Edge::E3, last(Edge::E3)), (Edge::E2, 0)),
+        ((Edge::E2, last(Edge::E2)), (Edge::E4, last(Edge::E4))),
+        ((Edge::E4, 0), (Edge::E1, last(Edge::E1))),
+    ];
+    for ((ea, ka), (eb, kb)) in corners {
+        let (a, b) = (ea.index(), eb.index());
+        let x = 0.5 * (points[a][ka] + points[b][kb]);
+        let w = [0, 1].map(|c| 0.5 * (uv[a][ka][c] + uv[b][kb][c]));
+        let miss = (points[a][ka] - points[b][kb]).norm();
+        let uv_miss = (0..2)
+            .map(|c| ((uv[a][ka][c] - uv[b][kb][c]) * scale[c]).abs())
+            .fold(0.0, f64::max);
+        if miss > lp.tol() || uv_miss > 10.0 * lp.tol().max(miss) {
+            return Err(Error::input(
+                place,
+                format!(
+                    "the block edges {ea} and {eb} do not meet at their corner ({miss:.3e} apart \
+                     in space, {uv_miss:.3e} in the surface's parameters)"
+                ),
+            ));
+        }
+        (points[a][ka], points[b][kb]) = (x, x);
+        (uv[a][ka], uv[b][kb]) = (w, w);
+    }
     let uv_scaled = uv.clone().map(|e| {
         e.iter()
             .map(|p| [p[0] * scale[0], p[1] * scale[1]])

@@ -221,6 +221,11 @@ impl<'a> FaceLoop<'a> {
         Ok(uv)
     }
 
+    /// Distance beyond which a boundary point is not on the surface.
+    pub fn tol(&self) -> f64 {
+        self.tol
+    }
+
     /// Number of edges.
     pub fn len(&self) -> usize {
         self.edges.len()
