@@ -153,13 +153,30 @@ impl StepFace {
     }
 }
 
-/// `f` with its panics caught and not printed: the STEP reader's panics are reported as
-/// errors naming the file, not as a panic message on stderr.
+thread_local! {
+    /// Depth of [`quietly`] calls on this thread: panics here are not printed while > 0.
+    static QUIET: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
+}
+
+/// `f` with its panics caught and not printed: the STEP reader's and truck's panics are
+/// reported as errors naming the file and face, not as a panic message on stderr.
+///
+/// The process-wide panic hook is wrapped once (it stays silent only on threads inside
+/// `quietly`), so faces gridded in parallel cannot leave it swapped: taking and restoring the
+/// hook around each call raced between threads and could leave every later panic unprinted.
 fn quietly<T>(f: impl FnOnce() -> T) -> std::thread::Result<T> {
-    let hook = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|_| {}));
+    static WRAP: std::sync::Once = std::sync::Once::new();
+    WRAP.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if QUIET.with(|q| q.get()) == 0 {
+                previous(info);
+            }
+        }));
+    });
+    QUIET.with(|q| q.set(q.get() + 1));
     let r = catch_unwind(AssertUnwindSafe(f));
-    std::panic::set_hook(hook);
+    QUIET.with(|q| q.set(q.get() - 1));
     r
 }
 

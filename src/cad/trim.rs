@@ -44,6 +44,8 @@ pub(super) struct FaceLoop<'a> {
     pub gap: f64,
     /// Distance beyond which a boundary point is "not on the surface".
     tol: f64,
+    /// Mean |x_u|, |x_v| over the samples ([`FaceLoop::metric_scale`]).
+    scale: [f64; 2],
 }
 
 /// Shifts periodic parameters of `uv` by whole periods to lie nearest `near`.
@@ -113,6 +115,7 @@ impl<'a> FaceLoop<'a> {
             edges: Vec::new(),
             gap: 0.0,
             tol: tol_rel * size,
+            scale: [1.0; 2],
         };
         let n = curves.len();
         for k in 0..n {
@@ -137,8 +140,9 @@ impl<'a> FaceLoop<'a> {
             }
             lp.edges.push(LoopCurve { curve, map, uv });
         }
+        lp.scale = lp.mean_speeds();
         // Closure: back at the start in (u, v), not a period away.
-        let scale = lp.metric_scale();
+        let scale = lp.scale;
         let miss = (0..2)
             .map(|c| ((prev[c] - first[c]) * scale[c]).abs())
             .fold(0.0, f64::max);
@@ -238,6 +242,10 @@ impl<'a> FaceLoop<'a> {
 
     /// Mean |x_u| and |x_v| over the samples: scales that make (u, v) lengths ≈ 3D lengths.
     pub fn metric_scale(&self) -> [f64; 2] {
+        self.scale
+    }
+
+    fn mean_speeds(&self) -> [f64; 2] {
         let mut sum = [0.0; 2];
         let mut count = 0.0f64;
         for e in &self.edges {

@@ -181,6 +181,7 @@ fn grid(a: &GridArgs) -> Result<()> {
     let mut blocks = Vec::new();
     let mut fold: Option<Error> = None;
     let (mut failed, mut folded) = (Vec::new(), Vec::new());
+    let mut folded_cells = 0;
     for (f, r) in results {
         let place = format!("{name}: face {}", f.index);
         let g = match r {
@@ -219,6 +220,7 @@ fn grid(a: &GridArgs) -> Result<()> {
                 first: q.folded_list(),
             };
             folded.push(f.index);
+            folded_cells += q.folded_cells();
             if !a.allow_folded {
                 // With --all the face is left out; the others are still written.
                 if a.face.is_none() {
@@ -255,7 +257,7 @@ fn grid(a: &GridArgs) -> Result<()> {
     if !folded.is_empty() {
         return Err(Error::Folded {
             place: name,
-            count: folded.len(),
+            count: folded_cells,
             first: format!(
                 "faces {folded:?} (of {total}; {} written{})",
                 blocks.len(),
