@@ -19,6 +19,7 @@ python3 .ci/independent_readers.py "$exe" "$work"
 
 glbs=()
 conns=()
+meshes=()
 for ex in examples/*.toml; do
   name="$(basename "$ex" .toml)"
   extra=()
@@ -29,6 +30,11 @@ for ex in examples/*.toml; do
     -o "$work/$name.svg" "${extra[@]}"
   "$exe" convert -q "$work/${name}_run.x" "$work/${name}_skewness.glb" --color skewness
   glbs+=("$work/$name.glb" "$work/${name}_skewness.glb")
+  if [ ${#extra[@]} -gt 0 ]; then
+    meshes+=("$work/${name}_run.x:$work/$name.conn")
+  else
+    meshes+=("$work/${name}_run.x")
+  fi
   if [ ${#extra[@]} -gt 0 ]; then
     "$exe" convert -q "$work/${name}_run.x" "$work/${name}_3d.x" --three-d
     conns+=("$work/${name}_3d.x" "$work/$name.conn")
@@ -44,3 +50,7 @@ grep -a 'conn: \|only in' "$work/conn.log" || cat "$work/conn.log"
 "$exe" plot -q "$work/volume2_ref.xyz" -o "$work/volume2.png" --color skewness
 NODE_PATH="$PWD/target/ci-node/node_modules" node .ci/gltf_validate.js \
   "${glbs[@]}" "$work/volume2.glb" "$work/planar2.gltf"
+# Solver meshes of every example, checked by the solvers' tools.
+mkdir -p "$work/meshes"
+python3 .ci/check_meshes.py "$exe" "$work/meshes" "${meshes[@]}" 2>"$work/meshes.log" ||
+  { cat "$work/meshes.log"; exit 1; }

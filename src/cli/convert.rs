@@ -3,6 +3,7 @@
 
 use clap::Args;
 use ellipgrid::case::LoadedCase;
+use ellipgrid::io::connectivity::ConnFile;
 use ellipgrid::io::gltf::{self, GltfOptions};
 use ellipgrid::io::patches::CellMetric;
 use ellipgrid::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
@@ -18,7 +19,8 @@ pub struct ConvertArgs {
     /// or a case file (.toml, run first).
     input: PathBuf,
     /// The output, by extension: .x/.xyz/.p3d/.g/.grd (Plot3D), .vts, .vtm, .glb, .gltf, .obj,
-    /// .png or .svg.
+    /// .png or .svg, .conn (connectivity), .su2 (SU2), .msh (Gmsh 4.1), or a directory named
+    /// polyMesh (OpenFOAM; planar grids extruded one unit along z).
     output: PathBuf,
     /// Plot3D encoding: unformatted (Fortran records), formatted (ASCII) or stream (C binary).
     /// Default: the input's (unformatted for case files).
@@ -55,6 +57,11 @@ pub struct ConvertArgs {
     /// aspect).
     #[arg(long, value_name = "METRIC")]
     color: Option<String>,
+    /// The connectivity of a Plot3D or VTK input (a `.conn` file: interfaces, boundary
+    /// patches, families), for solver meshes (.su2, .msh, polyMesh). Default: the input's
+    /// name with `.conn` if that file exists; without one, every block side is its own patch.
+    #[arg(long, value_name = "FILE")]
+    conn: Option<PathBuf>,
     /// Print only errors.
     #[arg(short, long)]
     quiet: bool,
@@ -197,6 +204,15 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
             gltf::write_gltf(&a.output, blocks, &GltfOptions { color })?;
             vec![a.output.with_extension("bin"), a.output.clone()]
         }
+        OutputKind::Foam | OutputKind::Su2 | OutputKind::Msh | OutputKind::Connectivity => {
+            let conn = connectivity(a, &input)?;
+            if kind == OutputKind::Connectivity {
+                ellipgrid::io::connectivity::write_file(&a.output, &conn)?;
+                vec![a.output.clone()]
+            } else {
+                ellipgrid::io::staged(|| job::write_mesh(&a.output, kind, blocks, &conn))?
+            }
+        }
         _ => {
             let base = input.format.unwrap_or_default();
             job::write_outputs(blocks, std::slice::from_ref(&a.output), &base)?
@@ -208,6 +224,35 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The connectivity of the input: a case's topology, `--conn`, the `.conn` beside the input,
+/// or every block side a patch of its own.
+fn connectivity(a: &ConvertArgs, input: &Loaded) -> Result<ConnFile> {
+    if let Some(t) = &input.topology {
+        if a.conn.is_some() {
+            return Err(Error::input(
+                "--conn",
+                "a case file's topology gives the connectivity",
+            ));
+        }
+        return Ok(ellipgrid::io::connectivity::from_topology(t));
+    }
+    let beside = a.input.with_extension("conn");
+    let path = match &a.conn {
+        Some(p) => Some(p.clone()),
+        None => beside.is_file().then_some(beside),
+    };
+    match path {
+        Some(p) => {
+            let c = ellipgrid::io::connectivity::read(&p)?;
+            if !a.quiet {
+                println!("connectivity from {}", p.display());
+            }
+            Ok(c)
+        }
+        None => Ok(ellipgrid::io::mesh::sides_as_patches(&input.blocks)),
+    }
 }
 
 /// True if any Plot3D flavour option was given (else the input's flavour is kept).

@@ -42,6 +42,12 @@ pub fn write(path: &Path, topo: &Topology, blocks: &[(String, Block)]) -> Result
             "the connectivity needs every block of the topology",
         ));
     }
+    write_file(path, &from_topology(topo))
+}
+
+/// The connectivity of a topology as a file holds it: side a of each interface with growing
+/// indices, b following a's node order; families numbered in order of first use.
+pub fn from_topology(topo: &Topology) -> ConnFile {
     let c = topo.connectivity();
     let mut families: Vec<String> = Vec::new();
     for p in &c.patches {
@@ -49,41 +55,57 @@ pub fn write(path: &Path, topo: &Topology, blocks: &[(String, Block)]) -> Result
             families.push(p.family.clone());
         }
     }
-    let one = |r: &SideRange, from: [usize; 2], to: [usize; 2]| {
+    let one = |r: &SideRange, from: [usize; 2], to: [usize; 2]| -> Range {
+        (
+            r.block + 1,
+            [from[0] + 1, from[1] + 1, 1],
+            [to[0] + 1, to[1] + 1, 1],
+        )
+    };
+    let mut out = ConnFile::default();
+    for f in &c.interfaces {
+        let (a, b) = (&f.a, &f.b);
+        out.interfaces.push(if a.start <= a.end {
+            [one(a, a.start, a.end), one(b, b.start, b.end)]
+        } else {
+            [one(a, a.end, a.start), one(b, b.end, b.start)]
+        });
+    }
+    for p in &c.patches {
+        let r = &p.range;
+        let (lo, hi) = (r.start.min(r.end), r.start.max(r.end));
+        let id = 1 + families.iter().position(|f| f == &p.family).unwrap_or(0);
+        out.patches.push((one(r, lo, hi), id));
+    }
+    out.families = families
+        .into_iter()
+        .enumerate()
+        .map(|(k, f)| (k + 1, f))
+        .collect();
+    out
+}
+
+/// Writes a connectivity file (atomically).
+pub fn write_file(path: &Path, c: &ConnFile) -> Result<()> {
+    let one = |r: &Range| {
         format!(
             "{:4} {:6} {:6} {:6} {:6} {:6} {:6}",
-            r.block + 1,
-            from[0] + 1,
-            from[1] + 1,
-            1,
-            to[0] + 1,
-            to[1] + 1,
-            1
+            r.0, r.1[0], r.1[1], r.1[2], r.2[0], r.2[1], r.2[2]
         )
     };
     write_atomic(path, |w| {
         writeln!(w, "{}", c.interfaces.len())?;
-        for f in &c.interfaces {
-            // Side a with growing indices; b follows a's node order.
-            let (a, b) = (&f.a, &f.b);
-            if a.start <= a.end {
-                writeln!(w, "{}", one(a, a.start, a.end))?;
-                writeln!(w, "{}", one(b, b.start, b.end))?;
-            } else {
-                writeln!(w, "{}", one(a, a.end, a.start))?;
-                writeln!(w, "{}", one(b, b.end, b.start))?;
-            }
+        for [a, b] in &c.interfaces {
+            writeln!(w, "{}", one(a))?;
+            writeln!(w, "{}", one(b))?;
         }
         writeln!(w, "{}", c.patches.len())?;
-        for p in &c.patches {
-            let r = &p.range;
-            let (lo, hi) = (r.start.min(r.end), r.start.max(r.end));
-            let id = 1 + families.iter().position(|f| f == &p.family).unwrap_or(0);
-            writeln!(w, "{} {id:4}", one(r, lo, hi))?;
+        for (r, id) in &c.patches {
+            writeln!(w, "{} {id:4}", one(r))?;
         }
-        writeln!(w, "{}", families.len())?;
-        for (k, f) in families.iter().enumerate() {
-            writeln!(w, "{:4} {f}", k + 1)?;
+        writeln!(w, "{}", c.families.len())?;
+        for (k, f) in &c.families {
+            writeln!(w, "{k:4} {f}")?;
         }
         Ok(())
     })

@@ -9,10 +9,14 @@ use std::path::Path;
 use crate::{Error, Grid2, Grid3, Result};
 
 pub mod connectivity;
+pub mod foam;
 pub mod gltf;
+pub mod gmsh;
+pub mod mesh;
 pub mod obj;
 pub mod patches;
 pub mod plot3d;
+pub mod su2;
 pub mod vtk;
 pub mod vtk_read;
 

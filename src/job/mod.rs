@@ -275,7 +275,16 @@ pub enum OutputKind {
     Picture,
     /// The connectivity of a multi-block case (`.conn`).
     Connectivity,
+    /// An OpenFOAM mesh: a directory named `polyMesh`.
+    Foam,
+    /// An SU2 native mesh (`.su2`).
+    Su2,
+    /// A Gmsh MSH 4.1 mesh (`.msh`).
+    Msh,
 }
+
+/// The span along z of a planar grid written as an OpenFOAM mesh (one cell thick).
+pub const FOAM_SPAN: f64 = 1.0;
 
 /// The output kind of a path, or an error listing the known extensions.
 pub fn output_kind(path: &Path) -> Result<OutputKind> {
@@ -284,8 +293,13 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
         .and_then(|e| e.to_str())
         .map(|e| e.to_ascii_lowercase())
         .unwrap_or_default();
+    if path.file_name().and_then(|n| n.to_str()) == Some("polyMesh") {
+        return Ok(OutputKind::Foam);
+    }
     match ext.as_str() {
         "x" | "xyz" | "p3d" | "g" | "grd" => Ok(OutputKind::Plot3d),
+        "su2" => Ok(OutputKind::Su2),
+        "msh" => Ok(OutputKind::Msh),
         "vts" => Ok(OutputKind::Vts),
         "vtm" => Ok(OutputKind::Vtm),
         "glb" => Ok(OutputKind::Glb),
@@ -296,7 +310,8 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
         _ => Err(Error::input(
             path.display().to_string(),
             "unknown output extension: use .x/.xyz/.p3d/.g (Plot3D), .vts or .vtm (VTK), \
-             .glb/.gltf (glTF), .obj (OBJ), .png/.svg (picture), .conn (connectivity)",
+             .glb/.gltf (glTF), .obj (OBJ), .png/.svg (picture), .conn (connectivity), \
+             .su2 (SU2), .msh (Gmsh), or a directory named polyMesh (OpenFOAM)",
         )),
     }
 }
@@ -418,9 +433,48 @@ fn write_each(
                 crate::plot::write_picture(path, blocks, &crate::plot::PlotOptions::default())?;
                 written.push(path.clone());
             }
+            OutputKind::Foam | OutputKind::Su2 | OutputKind::Msh => {
+                let conn = match topology {
+                    Some(t) => crate::io::connectivity::from_topology(t),
+                    None => crate::io::mesh::sides_as_patches(blocks),
+                };
+                written.extend(write_mesh(path, kind, blocks, &conn)?);
+            }
         }
     }
     Ok(written)
+}
+
+/// Writes `blocks`, connected as `conn` says, as one unstructured solver mesh (OpenFOAM,
+/// SU2 or Gmsh; `kind` says which). Returns the files written.
+pub fn write_mesh(
+    path: &Path,
+    kind: OutputKind,
+    blocks: &[(String, Block)],
+    conn: &crate::io::connectivity::ConnFile,
+) -> Result<Vec<PathBuf>> {
+    use crate::io::mesh::Mesh;
+    let place = path.display().to_string();
+    match kind {
+        OutputKind::Foam => {
+            let planar = blocks.iter().any(|(_, b)| matches!(b, Block::Planar(_)));
+            let mesh = Mesh::build(&place, blocks, conn, planar.then_some(FOAM_SPAN))?;
+            crate::io::foam::write_polymesh(path, &mesh)?;
+            Ok(["points", "faces", "owner", "neighbour", "boundary"]
+                .iter()
+                .map(|f| path.join(f))
+                .collect())
+        }
+        OutputKind::Su2 => {
+            crate::io::su2::write_su2(path, &Mesh::build(&place, blocks, conn, None)?)?;
+            Ok(vec![path.to_path_buf()])
+        }
+        OutputKind::Msh => {
+            crate::io::gmsh::write_msh(path, &Mesh::build(&place, blocks, conn, None)?)?;
+            Ok(vec![path.to_path_buf()])
+        }
+        _ => Err(Error::input(place, "not a solver mesh format")),
+    }
 }
 
 fn write_vts_block(path: &Path, b: &Block) -> Result<()> {

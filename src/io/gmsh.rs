@@ -1,0 +1,148 @@
+//! Gmsh MSH 4.1 output (ASCII): the merged multi-block mesh ([`crate::io::mesh`]) with one
+//! entity per block (a surface, or a volume) and one per family (curves, or surfaces), and a
+//! physical group named after each block and each family, so that a solver reading Gmsh
+//! meshes (or Gmsh itself) finds the boundary patches by name. Node tags are the merged node
+//! numbers + 1; every node is listed once, with the first block's entity.
+
+use crate::io::mesh::{Cells, Mesh};
+use crate::io::write_atomic;
+use crate::Result;
+use std::io::Write;
+use std::path::Path;
+
+/// Gmsh element types.
+const LINE: u8 = 1;
+const QUAD: u8 = 3;
+const HEX: u8 = 5;
+
+/// Bounding box of a set of nodes, as Gmsh's six numbers.
+fn bbox(mesh: &Mesh, nodes: impl Iterator<Item = u32>) -> [f64; 6] {
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for n in nodes {
+        let p = mesh.points[n as usize];
+        for c in 0..3 {
+            b[c] = b[c].min(p[c]);
+            b[c + 3] = b[c + 3].max(p[c]);
+        }
+    }
+    b
+}
+
+/// A name inside Gmsh's double quotes.
+fn quoted(s: &str) -> String {
+    s.replace('"', "'")
+}
+
+/// Writes `mesh` as a Gmsh MSH 4.1 file (atomically).
+///
+/// # Errors
+/// [`crate::Error::Io`] if the file cannot be written.
+pub fn write_msh(path: &Path, mesh: &Mesh) -> Result<()> {
+    let volume = mesh.cells == Cells::Volume;
+    let (dim, nc, cell_type, face_type) = if volume {
+        (3, 8, HEX, QUAD)
+    } else {
+        (2, 4, QUAD, LINE)
+    };
+    let nf = mesh.face_nodes();
+    let nb = mesh.blocks.len();
+    let nfam = mesh.families.len();
+    // Physical tags: blocks 1..=nb, families nb+1..
+    write_atomic(path, |w| {
+        writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
+        writeln!(w, "$PhysicalNames\n{}", nb + nfam)?;
+        for (k, b) in mesh.blocks.iter().enumerate() {
+            writeln!(w, "{dim} {} \"{}\"", k + 1, quoted(&b.name))?;
+        }
+        for (k, f) in mesh.families.iter().enumerate() {
+            writeln!(w, "{} {} \"{}\"", dim - 1, nb + k + 1, quoted(f))?;
+        }
+        writeln!(w, "$EndPhysicalNames\n$Entities")?;
+        let fmt = |b: [f64; 6]| format!("{} {} {} {} {} {}", b[0], b[1], b[2], b[3], b[4], b[5]);
+        let (ncurves, nsurf, nvol) = if volume { (0, nfam, nb) } else { (nfam, nb, 0) };
+        writeln!(w, "0 {ncurves} {nsurf} {nvol}")?;
+        let families = |w: &mut dyn Write| -> std::io::Result<()> {
+            for (k, faces) in mesh.boundary.iter().enumerate() {
+                let b = bbox(
+                    mesh,
+                    faces.iter().flat_map(|f| f.nodes[..nf].iter().copied()),
+                );
+                writeln!(w, "{} {} 1 {} 0", k + 1, fmt(b), nb + k + 1)?;
+            }
+            Ok(())
+        };
+        let blocks = |w: &mut dyn Write| -> std::io::Result<()> {
+            for (k, b) in mesh.blocks.iter().enumerate() {
+                writeln!(
+                    w,
+                    "{} {} 1 {} 0",
+                    k + 1,
+                    fmt(bbox(mesh, b.ids.iter().copied())),
+                    k + 1
+                )?;
+            }
+            Ok(())
+        };
+        // entities by dimension: the families' (one lower) before the blocks'
+        families(w)?;
+        blocks(w)?;
+        writeln!(w, "$EndEntities")?;
+        let np = mesh.points.len();
+        writeln!(w, "$Nodes\n1 {np} 1 {np}\n{dim} 1 0 {np}")?;
+        for k in 1..=np {
+            writeln!(w, "{k}")?;
+        }
+        for p in &mesh.points {
+            writeln!(w, "{} {} {}", p[0], p[1], p[2])?;
+        }
+        writeln!(w, "$EndNodes")?;
+        let ncells = mesh.ncells();
+        let nfaces: usize = mesh.boundary.iter().map(Vec::len).sum();
+        let nblocks = nb + mesh.boundary.iter().filter(|f| !f.is_empty()).count();
+        writeln!(
+            w,
+            "$Elements\n{nblocks} {} 1 {}",
+            ncells + nfaces,
+            ncells + nfaces
+        )?;
+        let mut tag = 1usize;
+        for (k, b) in mesh.blocks.iter().enumerate() {
+            writeln!(w, "{dim} {} {cell_type} {}", k + 1, b.ncells())?;
+            let [ci, cj, ck] = b.cell_dims();
+            for kk in 0..ck {
+                for j in 0..cj {
+                    for i in 0..ci {
+                        write!(w, "{tag}")?;
+                        for v in &b.cell_nodes(i, j, kk)[..nc] {
+                            write!(w, " {}", v + 1)?;
+                        }
+                        writeln!(w)?;
+                        tag += 1;
+                    }
+                }
+            }
+        }
+        for (k, faces) in mesh.boundary.iter().enumerate() {
+            if faces.is_empty() {
+                continue;
+            }
+            writeln!(w, "{} {} {face_type} {}", dim - 1, k + 1, faces.len())?;
+            for f in faces {
+                write!(w, "{tag}")?;
+                for v in &f.nodes[..nf] {
+                    write!(w, " {}", v + 1)?;
+                }
+                writeln!(w)?;
+                tag += 1;
+            }
+        }
+        writeln!(w, "$EndElements")
+    })
+}
