@@ -12,7 +12,11 @@ Gmsh MSH 4.1 file with `ellipgrid convert`, then
     same number of nodes and cells as the polyMesh (the 2D ones: half its points), every
     family a named marker / physical group with the same number of boundary faces as the
     polyMesh patch.
-Surface grids (not volumes, not planar) give only the Gmsh file. Exit 1 on any failure.
+  - writes a CGNS file: cgnscheck must report no warning and no error, and h5py reads it
+    independently: every 1to1 connection's point range, donor range and transform map each
+    node onto a node of the donor zone with the same coordinates.
+Surface grids (not volumes, not planar) give only the Gmsh and CGNS files. Exit 1 on any
+failure.
 """
 import os
 import re
@@ -20,7 +24,9 @@ import subprocess
 import sys
 
 import gmsh
+import h5py
 import meshio
+import numpy as np
 
 FOAM_BASHRC = "/usr/share/openfoam/etc/bashrc"
 CONTROL = """FoamFile { version 2.0; format ascii; class dictionary; object %s; }
@@ -81,6 +87,67 @@ def check_mesh(case, name):
     return problems, cells, points, patches, verdict
 
 
+def label(node):
+    v = node.attrs.get("label") if isinstance(node, h5py.Group) else None
+    if v is None:
+        return ""
+    v = v.tobytes() if hasattr(v, "tobytes") else bytes(v)
+    return v.split(b"\0")[0].decode()
+
+
+def cgns_text(node):
+    return node[" data"][()].tobytes().decode().rstrip("\0")
+
+
+def check_cgns(exe, grid, extra, work, name):
+    """cgnscheck without warnings or errors; h5py reads every zone and checks every 1to1
+    connection geometrically: the node the point range, donor range and transform map a
+    node to has the same coordinates."""
+    path = os.path.join(work, name + ".cgns")
+    subprocess.run([exe, "convert", "-q", grid, path] + extra, check=True)
+    out = subprocess.run(["cgnscheck", "-w", "3", path], capture_output=True, text=True)
+    problems = [l.strip() for l in (out.stdout + out.stderr).splitlines()
+                if "WARNING" in l or "ERROR" in l]
+    if out.returncode != 0:
+        problems.append(f"cgnscheck exit {out.returncode}")
+    f = h5py.File(path, "r")
+    base = next(f[k] for k in f if k.strip() and label(f[k]) == "CGNSBase_t")
+    zones = {k: base[k] for k in base if label(base[k]) == "Zone_t"}
+    xyz = {}
+    for zn, z in zones.items():
+        g = z["GridCoordinates"]
+        xyz[zn] = [g[c][" data"][()] for c in ("CoordinateX", "CoordinateY", "CoordinateZ") if c in g]
+    scale = max(float(np.ptp(np.concatenate([c.ravel() for c in xyz[zn]]))) for zn in xyz)
+    n1to1 = 0
+    for zn, z in zones.items():
+        if "ZoneGridConnectivity" not in z:
+            continue
+        for cn in z["ZoneGridConnectivity"]:
+            c = z["ZoneGridConnectivity"][cn]
+            if not cn.strip() or label(c) != "GridConnectivity1to1_t":
+                continue
+            n1to1 += 1
+            donor = cgns_text(c)
+            r = c["PointRange"][" data"][()]
+            d = c["PointRangeDonor"][" data"][()]
+            t = c["Transform"][" data"][()]
+            dim = len(t)
+            T = np.zeros((dim, dim), int)
+            for a in range(dim):
+                T[abs(t[a]) - 1, a] = np.sign(t[a])
+            worst = 0.0
+            ranges = [range(min(r[0][k], r[1][k]), max(r[0][k], r[1][k]) + 1) for k in range(dim)]
+            for idx in np.stack(np.meshgrid(*ranges, indexing="ij"), -1).reshape(-1, dim):
+                di = d[0] + T @ (idx - r[0])
+                # h5py arrays are (k, j, i) / (j, i): reversed index order, 0-based
+                p = [x[tuple(idx[::-1] - 1)] for x in xyz[zn]]
+                q = [x[tuple(di[::-1] - 1)] for x in xyz[donor]]
+                worst = max(worst, max(abs(a - b) for a, b in zip(p, q)))
+            if worst > 1e-12 * scale:
+                problems.append(f"1to1 {zn}/{cn} -> {donor}: nodes {worst:.3e} apart")
+    return problems, len(zones), n1to1
+
+
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     bad = 0
@@ -105,8 +172,13 @@ def main():
         groups = {gmsh.model.getPhysicalName(d, t): (d, t) for d, t in gmsh.model.getPhysicalGroups()}
         nodes = len(gmsh.model.mesh.getNodes()[0])
         gmsh.finalize()
+        cgns_problems, nzones, n1to1 = check_cgns(exe, grid, extra, work, name)
         if surface:
-            print(f"{name}: surface grid: Gmsh only ({nodes} nodes, {len(groups)} groups)")
+            print(f"{name}: surface grid: Gmsh and CGNS only ({nodes} nodes, {len(groups)} "
+                  f"groups; CGNS {nzones} zones)")
+            for p in cgns_problems:
+                print("   ", p)
+            bad += bool(cgns_problems)
             continue
         case_dir(case)
         problems, cells, points, patches, verdict = check_mesh(case, name)
@@ -137,9 +209,11 @@ def main():
                 n = sum(len(x) for x in m.cell_sets[patch] if x is not None)
                 if n != nfaces:
                     problems.append(f"patch {patch}: meshio {n} faces, polyMesh {nfaces}")
+        problems += cgns_problems
         status = "ok" if not problems else "FAILED"
         print(f"{name}: {status}: {cells} cells, {points} points, {len(patches)} patches; "
-              f"checkMesh: {verdict}")
+              f"checkMesh: {verdict}; CGNS: {nzones} zones, {n1to1} 1to1 (cgnscheck clean, "
+              f"donors coincide)")
         for p in problems:
             print("   ", p)
         bad += bool(problems)

@@ -10,7 +10,7 @@
 # target/ci-node.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release --quiet
+cargo build --release --quiet --features cgns
 exe="$PWD/target/release/ellipgrid"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

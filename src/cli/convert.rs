@@ -16,11 +16,13 @@ use std::path::{Path, PathBuf};
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
     /// The input: a Plot3D grid (any flavour, autodetected), a VTK .vts/.vtm structured grid,
-    /// or a case file (.toml, run first).
+    /// a CGNS file (.cgns, with its connectivity; cgns feature), or a case file (.toml, run
+    /// first).
     input: PathBuf,
     /// The output, by extension: .x/.xyz/.p3d/.g/.grd (Plot3D), .vts, .vtm, .glb, .gltf, .obj,
-    /// .png or .svg, .conn (connectivity), .su2 (SU2), .msh (Gmsh 4.1), or a directory named
-    /// polyMesh (OpenFOAM; planar grids extruded one unit along z).
+    /// .png or .svg, .conn (connectivity), .su2 (SU2), .msh (Gmsh 4.1), .cgns (CGNS, with the
+    /// cgns feature), or a directory named polyMesh (OpenFOAM; planar grids extruded one unit
+    /// along z).
     output: PathBuf,
     /// Plot3D encoding: unformatted (Fortran records), formatted (ASCII) or stream (C binary).
     /// Default: the input's (unformatted for case files).
@@ -74,6 +76,8 @@ pub struct Loaded {
     pub iblank: Option<Vec<Vec<i32>>>,
     /// The multi-block topology of a case file.
     pub topology: Option<ellipgrid::grid::topology::Topology>,
+    /// The connectivity a CGNS input holds.
+    pub conn: Option<ConnFile>,
 }
 
 /// Reads a grid input: a case file (`.toml`, gridded now; a folded grid is an error unless
@@ -103,6 +107,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
             format: None,
             iblank: None,
             topology: gen.topology,
+            conn: None,
         });
     }
     if ext == "vts" || ext == "vtm" {
@@ -120,7 +125,23 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
             format: None,
             iblank: None,
             topology: None,
+            conn: None,
         });
+    }
+    if ext == "cgns" {
+        #[cfg(feature = "cgns")]
+        {
+            let (blocks, conn) = ellipgrid::io::cgns::read_cgns(path)?;
+            return Ok(Loaded {
+                blocks,
+                format: None,
+                iblank: None,
+                topology: None,
+                conn: Some(conn),
+            });
+        }
+        #[cfg(not(feature = "cgns"))]
+        return Err(Error::input(path.display().to_string(), job::NO_CGNS));
     }
     if matches!(ext.as_str(), "glb" | "gltf" | "obj" | "png" | "svg") {
         return Err(Error::input(
@@ -141,6 +162,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
         format: Some(file.format),
         iblank: file.iblank,
         topology: None,
+        conn: None,
     })
 }
 
@@ -204,7 +226,11 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
             gltf::write_gltf(&a.output, blocks, &GltfOptions { color })?;
             vec![a.output.with_extension("bin"), a.output.clone()]
         }
-        OutputKind::Foam | OutputKind::Su2 | OutputKind::Msh | OutputKind::Connectivity => {
+        OutputKind::Foam
+        | OutputKind::Su2
+        | OutputKind::Msh
+        | OutputKind::Cgns
+        | OutputKind::Connectivity => {
             let conn = connectivity(a, &input)?;
             if kind == OutputKind::Connectivity {
                 ellipgrid::io::connectivity::write_file(&a.output, &conn)?;
@@ -237,6 +263,9 @@ fn connectivity(a: &ConvertArgs, input: &Loaded) -> Result<ConnFile> {
             ));
         }
         return Ok(ellipgrid::io::connectivity::from_topology(t));
+    }
+    if let (Some(c), None) = (&input.conn, &a.conn) {
+        return Ok(c.clone());
     }
     let beside = a.input.with_extension("conn");
     let path = match &a.conn {

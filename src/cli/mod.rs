@@ -329,7 +329,20 @@ fn smooth(
 }
 
 fn check(grid: &Path, report: Option<&Path>) -> Result<()> {
-    let file = plot3d::read_plot3d(grid)?;
+    let file = if grid
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("cgns"))
+    {
+        // a CGNS grid (the cgns feature), in the same form as a Plot3D file
+        let blocks = convert::load(grid, true, true)?.blocks;
+        plot3d::Plot3dFile {
+            blocks: blocks.into_iter().map(|(_, b)| b).collect(),
+            format: plot3d::Plot3dFormat::default(),
+            iblank: None,
+        }
+    } else {
+        plot3d::read_plot3d(grid)?
+    };
     let mut reports: Vec<(String, AnyQuality)> = Vec::new();
     for (k, b) in file.blocks.iter().enumerate() {
         let q: AnyQuality = match b {

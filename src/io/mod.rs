@@ -8,6 +8,8 @@ use std::path::Path;
 
 use crate::{Error, Grid2, Grid3, Result};
 
+#[cfg(feature = "cgns")]
+pub mod cgns;
 pub mod connectivity;
 pub mod foam;
 pub mod gltf;
@@ -235,6 +237,40 @@ pub fn write_atomic(
     });
     if let Some(tmp) = tmp {
         tmp.persist(path).map_err(|e| err(e.error))?;
+    }
+    Ok(())
+}
+
+/// [`write_atomic`] for writers that need a file name (a C library writing the file itself):
+/// `f` writes the temporary file at the path it is given, which is renamed onto `path` only
+/// if `f` succeeds (inside [`staged`], at the end of the stage).
+pub fn write_atomic_path(path: &Path, f: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let tmp = tempfile::Builder::new()
+        .prefix(".ellipgrid-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .map_err(|e| Error::io(path, e))?
+        .into_temp_path();
+    f(&tmp)?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::Permissions::from_mode(0o644);
+        std::fs::set_permissions(&tmp, mode).map_err(|e| Error::io(path, e))?;
+    }
+    let tmp = STAGE.with(|s| match s.borrow_mut().as_mut() {
+        Some(stage) => {
+            stage.push((tmp, path.to_path_buf()));
+            None
+        }
+        None => Some(tmp),
+    });
+    if let Some(tmp) = tmp {
+        tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
     }
     Ok(())
 }

@@ -281,6 +281,8 @@ pub enum OutputKind {
     Su2,
     /// A Gmsh MSH 4.1 mesh (`.msh`).
     Msh,
+    /// A CGNS/HDF5 file (`.cgns`; needs the `cgns` feature).
+    Cgns,
 }
 
 /// The span along z of a planar grid written as an OpenFOAM mesh (one cell thick).
@@ -300,6 +302,7 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
         "x" | "xyz" | "p3d" | "g" | "grd" => Ok(OutputKind::Plot3d),
         "su2" => Ok(OutputKind::Su2),
         "msh" => Ok(OutputKind::Msh),
+        "cgns" => Ok(OutputKind::Cgns),
         "vts" => Ok(OutputKind::Vts),
         "vtm" => Ok(OutputKind::Vtm),
         "glb" => Ok(OutputKind::Glb),
@@ -311,7 +314,8 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
             path.display().to_string(),
             "unknown output extension: use .x/.xyz/.p3d/.g (Plot3D), .vts or .vtm (VTK), \
              .glb/.gltf (glTF), .obj (OBJ), .png/.svg (picture), .conn (connectivity), \
-             .su2 (SU2), .msh (Gmsh), or a directory named polyMesh (OpenFOAM)",
+             .su2 (SU2), .msh (Gmsh), .cgns (CGNS), or a directory named polyMesh \
+             (OpenFOAM)",
         )),
     }
 }
@@ -433,7 +437,7 @@ fn write_each(
                 crate::plot::write_picture(path, blocks, &crate::plot::PlotOptions::default())?;
                 written.push(path.clone());
             }
-            OutputKind::Foam | OutputKind::Su2 | OutputKind::Msh => {
+            OutputKind::Foam | OutputKind::Su2 | OutputKind::Msh | OutputKind::Cgns => {
                 let conn = match topology {
                     Some(t) => crate::io::connectivity::from_topology(t),
                     None => crate::io::mesh::sides_as_patches(blocks),
@@ -445,8 +449,29 @@ fn write_each(
     Ok(written)
 }
 
+/// Writes a CGNS file (the `cgns` feature), or says how to get one.
+fn write_cgns(
+    path: &Path,
+    blocks: &[(String, Block)],
+    conn: &crate::io::connectivity::ConnFile,
+) -> Result<()> {
+    #[cfg(feature = "cgns")]
+    {
+        crate::io::cgns::write_cgns(path, blocks, conn)
+    }
+    #[cfg(not(feature = "cgns"))]
+    {
+        let _ = (blocks, conn);
+        Err(Error::input(path.display().to_string(), NO_CGNS))
+    }
+}
+
+/// Why a build without the `cgns` feature refuses CGNS files.
+pub const NO_CGNS: &str = "this ellipgrid was built without CGNS: build it with `cargo build \
+     --release --features cgns` (needs Debian's libcgns-dev and libclang-dev)";
+
 /// Writes `blocks`, connected as `conn` says, as one unstructured solver mesh (OpenFOAM,
-/// SU2 or Gmsh; `kind` says which). Returns the files written.
+/// SU2 or Gmsh; `kind` says which) or as a structured CGNS file. Returns the files written.
 pub fn write_mesh(
     path: &Path,
     kind: OutputKind,
@@ -471,6 +496,10 @@ pub fn write_mesh(
         }
         OutputKind::Msh => {
             crate::io::gmsh::write_msh(path, &Mesh::build(&place, blocks, conn, None)?)?;
+            Ok(vec![path.to_path_buf()])
+        }
+        OutputKind::Cgns => {
+            write_cgns(path, blocks, conn)?;
             Ok(vec![path.to_path_buf()])
         }
         _ => Err(Error::input(place, "not a solver mesh format")),

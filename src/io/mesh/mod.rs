@@ -10,8 +10,10 @@
 //! how the blocks meet. Interface nodes must coincide (to 1e-6 of the grid's size).
 
 mod faces;
+mod interface;
 
 pub use faces::{Face, Join};
+pub use interface::{one_to_one, OneToOne};
 
 use crate::io::connectivity::{ConnFile, Range};
 use crate::io::Block;
@@ -346,7 +348,7 @@ fn merge(
     }
     let scale = diameter(views);
     for (n, [a, b]) in conn.interfaces.iter().enumerate() {
-        let pairs = faces::pair_nodes(place, blocks, views, n, a, b, scale)?;
+        let pairs = interface::pair_nodes(place, blocks, views, n, a, b, scale)?;
         for [p, q] in pairs {
             let (p, q) = (offsets[p.0] + p.1, offsets[q.0] + q.1);
             let (rp, rq) = (root(&mut parent, p), root(&mut parent, q));
