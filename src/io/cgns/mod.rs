@@ -53,6 +53,33 @@ impl<'a> File<'a> {
         }
     }
 
+    /// Goes to node `index` of label `child` inside the first `parent` of zone `z`.
+    fn goto_in_zone(
+        &self,
+        base: c_int,
+        z: c_int,
+        parent: &str,
+        child: &str,
+        index: c_int,
+    ) -> Result<()> {
+        let (zone, parent, child, end) = (c("Zone_t"), c(parent), c(child), c("end"));
+        // SAFETY: label/index pairs as cg_goto reads them, C strings alive across the call.
+        let ier = unsafe {
+            cg_goto(
+                self.fd,
+                base,
+                zone.as_ptr(),
+                z,
+                parent.as_ptr(),
+                1 as c_int,
+                child.as_ptr(),
+                index,
+                end.as_ptr(),
+            )
+        };
+        self.ok(ier, "goto")
+    }
+
     fn open(path: &'a Path, mode: u32) -> Result<File<'a>> {
         let name = CString::new(path.as_os_str().as_encoded_bytes())
             .map_err(|_| Error::input(path.display().to_string(), "a NUL in the file name"))?;
@@ -260,22 +287,7 @@ fn write_base(
                 "coordinates",
             )?;
             let exps: [f64; 5] = [0.0, 1.0, 0.0, 0.0, 0.0];
-            ok(
-                unsafe {
-                    cg_goto(
-                        f.fd,
-                        base,
-                        c("Zone_t").as_ptr(),
-                        z,
-                        c("GridCoordinates_t").as_ptr(),
-                        1 as c_int,
-                        c("DataArray_t").as_ptr(),
-                        ci,
-                        end.as_ptr(),
-                    )
-                },
-                "goto coordinates",
-            )?;
+            f.goto_in_zone(base, z, "GridCoordinates_t", "DataArray_t", ci)?;
             ok(
                 unsafe {
                     cg_exponents_write(DataType_t_RealDouble, exps.as_ptr() as *const c_void)
@@ -353,22 +365,7 @@ fn write_base(
                 unsafe { cg_boco_gridlocation_write(f.fd, base, z, bc, GridLocation_t_Vertex) },
                 "grid location",
             )?;
-            ok(
-                unsafe {
-                    cg_goto(
-                        f.fd,
-                        base,
-                        c("Zone_t").as_ptr(),
-                        z,
-                        c("ZoneBC_t").as_ptr(),
-                        1 as c_int,
-                        c("BC_t").as_ptr(),
-                        bc,
-                        end.as_ptr(),
-                    )
-                },
-                "goto BC",
-            )?;
+            f.goto_in_zone(base, z, "ZoneBC_t", "BC_t", bc)?;
             ok(
                 unsafe { cg_famname_write(families[fam].as_ptr()) },
                 "family name",

@@ -25,7 +25,13 @@ fn name_of(b: &NameBuf) -> String {
 /// [`Error::Format`] naming the file for anything but structured zones with X, Y (Z)
 /// coordinates and point-range BCs, or a failed library call.
 pub fn read_cgns(path: &Path) -> Result<(Vec<(String, Block)>, ConnFile)> {
-    crate::io::read_input(path).map(drop)?; // readable, not a directory, not too large
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if meta.is_dir() {
+        return Err(Error::input(path.display().to_string(), "is a directory"));
+    }
+    // Zone sizes come from the file: their coordinates must fit in it (no compression is
+    // written or expected), so a hostile header cannot make us allocate without bound.
+    let mut budget = meta.len();
     let f = File::open(path, CG_MODE_READ)?;
     let ok = |ier, what: &str| f.ok(ier, what);
     let bad = |m: String| Error::format(path, m);
@@ -77,6 +83,14 @@ pub fn read_cgns(path: &Path) -> Result<(Vec<(String, Block)>, ConnFile)> {
             }
         }
         let n: usize = dims.iter().product();
+        let bytes = (n as u64).saturating_mul(8 * phys as u64);
+        if bytes > budget {
+            return Err(bad(format!(
+                "zone '{name}': {} × {} × {} nodes do not fit in the file",
+                dims[0], dims[1], dims[2]
+            )));
+        }
+        budget -= bytes;
         let rmin = [1 as c_int; 3];
         let rmax = [size[0], size[1], size[2]];
         let mut coords = Vec::new();

@@ -12,7 +12,7 @@ use crate::{Error, Result};
 pub(super) type NodeRef = (usize, usize);
 
 /// How side a's nodes map to side b's: 0-based corners and, per varying axis of a, b's axis.
-struct Correspondence {
+pub(super) struct Correspondence {
     ba: usize,
     bb: usize,
     fa: [usize; 3],
@@ -23,10 +23,18 @@ struct Correspondence {
     axes: Vec<(usize, usize)>,
 }
 
+/// The index `s` steps from `f` towards `l`.
+fn step(f: usize, l: usize, s: usize) -> usize {
+    if l >= f {
+        f + s
+    } else {
+        f - s
+    }
+}
+
 impl Correspondence {
     /// b's node for a's node `x`.
     fn map(&self, x: [usize; 3]) -> [usize; 3] {
-        let step = |f: usize, l: usize, s: usize| if l >= f { f + s } else { f - s };
         let mut y = self.fb;
         for &(ca, cb) in &self.axes {
             y[cb] = step(self.fb[cb], self.lb[cb], x[ca].abs_diff(self.fa[ca]));
@@ -35,8 +43,9 @@ impl Correspondence {
     }
 }
 
-/// Pairs side a's nodes with side b's, checks they coincide (to 1e-6 of `scale`).
-fn correspond(
+/// Pairs side a's nodes with side b's (the node pairs: (block, local node) each), checks
+/// they coincide (to 1e-6 of `scale`).
+pub(super) fn correspond(
     place: &str,
     blocks: &[(String, Block)],
     views: &[View],
@@ -82,7 +91,6 @@ fn correspond(
             lb,
             axes: va.iter().copied().zip(p.iter().copied()).collect(),
         };
-        let step = |f: usize, l: usize, s: usize| if l >= f { f + s } else { f - s };
         let mut pairs = Vec::new();
         let mut worst = 0.0f64;
         for t in 0..counts.get(1).copied().unwrap_or(1) {
@@ -127,19 +135,6 @@ fn correspond(
         ));
     }
     Ok((c, pairs))
-}
-
-/// The node pairs an interface makes: ((block, local node), (block, local node)).
-pub(super) fn pair_nodes(
-    place: &str,
-    blocks: &[(String, Block)],
-    views: &[View],
-    n: usize,
-    a: &Range,
-    b: &Range,
-    scale: f64,
-) -> Result<Vec<[NodeRef; 2]>> {
-    correspond(place, blocks, views, n, a, b, scale).map(|(_, p)| p)
 }
 
 /// One side of an interface as CGNS's `GridConnectivity1to1` holds it (1-based indices).

@@ -156,7 +156,7 @@ impl Mesh {
         }
         let mut conn = conn.clone();
         if extrude.is_some() {
-            extend_in_k(&mut conn, blocks.len());
+            extend_in_k(&mut conn, &views);
         }
         let merged = merge(place, blocks, &views, &conn)?;
         let mut blocks_out = Vec::with_capacity(blocks.len());
@@ -221,7 +221,7 @@ pub fn sides_as_patches(blocks: &[(String, Block)]) -> ConnFile {
 
 /// Extends every range of a planar connectivity through the two node layers of the
 /// extrusion, and adds the front (k = 1) and back (k = 2) of every block as one family.
-fn extend_in_k(c: &mut ConnFile, nblocks: usize) {
+fn extend_in_k(c: &mut ConnFile, views: &[View]) {
     for r in c.interfaces.iter_mut().flat_map(|r| r.iter_mut()) {
         r.1[2] = 1;
         r.2[2] = 2;
@@ -232,12 +232,10 @@ fn extend_in_k(c: &mut ConnFile, nblocks: usize) {
     }
     let id = c.families.iter().map(|f| f.0).max().unwrap_or(0) + 1;
     c.families.push((id, FRONT_AND_BACK.to_string()));
-    // Ranges need the block's size: [`faces::classify`] fills in the sentinel `usize::MAX`.
-    for b in 1..=nblocks {
-        c.patches
-            .push(((b, [1, 1, 1], [usize::MAX, usize::MAX, 1]), id));
-        c.patches
-            .push(((b, [1, 1, 2], [usize::MAX, usize::MAX, 2]), id));
+    for (b, v) in views.iter().enumerate() {
+        let [ni, nj, _] = v.dims;
+        c.patches.push(((b + 1, [1, 1, 1], [ni, nj, 1]), id));
+        c.patches.push(((b + 1, [1, 1, 2], [ni, nj, 2]), id));
     }
 }
 
@@ -348,7 +346,7 @@ fn merge(
     }
     let scale = diameter(views);
     for (n, [a, b]) in conn.interfaces.iter().enumerate() {
-        let pairs = interface::pair_nodes(place, blocks, views, n, a, b, scale)?;
+        let pairs = interface::correspond(place, blocks, views, n, a, b, scale)?.1;
         for [p, q] in pairs {
             let (p, q) = (offsets[p.0] + p.1, offsets[q.0] + q.1);
             let (rp, rq) = (root(&mut parent, p), root(&mut parent, q));
@@ -428,8 +426,7 @@ pub(crate) fn corners(
     let mut hi = [0; 3];
     for c in 0..3 {
         let n = v.dims[c];
-        let fix = |x: usize| if x == usize::MAX { n } else { x };
-        let (a, z) = (fix(r.1[c]), fix(r.2[c]));
+        let (a, z) = (r.1[c], r.2[c]);
         if a == 0 || z == 0 || a > n || z > n {
             return Err(Error::input(
                 place,
