@@ -333,3 +333,183 @@ fn volume_topology_errors_exit_2_naming_volume_face_and_edge() {
         &["face 'fx000'", "needs surface"],
     );
 }
+
+/// Two volumes stacked along z: below a box, above a box sheared by `shear` along x, sharing
+/// the face z = 0; `orthogonal` adds orthogonality at the shared face on both sides.
+fn sheared_pair(shear: f64, orthogonal: bool, n: usize) -> String {
+    let mut t = String::new();
+    let z = [-1.0, 0.0, 1.0];
+    let mut vs = Vec::new();
+    for (k, zk) in z.iter().enumerate() {
+        let dx = if k == 2 { shear } else { 0.0 };
+        for (j, y) in [0.0, 1.0].iter().enumerate() {
+            for (i, x) in [0.0, 1.0].iter().enumerate() {
+                let name = format!("v{i}{j}{k}");
+                writeln!(
+                    t,
+                    "[[vertex]]\nname = \"{name}\"\nat = [{:?}, {y:?}, {zk:?}]",
+                    x + dx
+                )
+                .unwrap();
+                vs.push(name);
+            }
+        }
+    }
+    let e = |t: &mut String, name: &str, a: &str, b: &str| {
+        writeln!(
+            t,
+            "[[edge]]\nname = \"{name}\"\nfrom = \"{a}\"\nto = \"{b}\"\nn = {n}"
+        )
+        .unwrap();
+    };
+    for k in 0..3 {
+        e(
+            &mut t,
+            &format!("x0{k}"),
+            &format!("v00{k}"),
+            &format!("v10{k}"),
+        );
+        e(
+            &mut t,
+            &format!("x1{k}"),
+            &format!("v01{k}"),
+            &format!("v11{k}"),
+        );
+        e(
+            &mut t,
+            &format!("y0{k}"),
+            &format!("v00{k}"),
+            &format!("v01{k}"),
+        );
+        e(
+            &mut t,
+            &format!("y1{k}"),
+            &format!("v10{k}"),
+            &format!("v11{k}"),
+        );
+    }
+    for k in 0..2 {
+        for (i, j) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            e(
+                &mut t,
+                &format!("z{i}{j}{k}"),
+                &format!("v{i}{j}{k}"),
+                &format!("v{i}{j}{}", k + 1),
+            );
+        }
+    }
+    let face = |t: &mut String, name: &str, kind: &str, s: [String; 4]| {
+        writeln!(
+            t,
+            "[[face]]\nname = \"{name}\"\nkind = \"{kind}\"\nE1 = \"{}\"\nE2 = \"{}\"\nE3 = \"{}\"\nE4 = \"{}\"",
+            s[0], s[1], s[2], s[3]
+        )
+        .unwrap();
+    };
+    for k in 0..3 {
+        // z = const: E1/E2 along y at x = 0, 1; E3/E4 along x at y = 0, 1.
+        face(
+            &mut t,
+            &format!("fz{k}"),
+            "minimal",
+            [
+                format!("y0{k}"),
+                format!("y1{k}"),
+                format!("x0{k}"),
+                format!("x1{k}"),
+            ],
+        );
+    }
+    for k in 0..2 {
+        let up = k + 1;
+        face(
+            &mut t,
+            &format!("fx0{k}"),
+            "minimal",
+            [
+                format!("z00{k}"),
+                format!("z01{k}"),
+                format!("y0{k}"),
+                format!("y0{up}"),
+            ],
+        );
+        face(
+            &mut t,
+            &format!("fx1{k}"),
+            "minimal",
+            [
+                format!("z10{k}"),
+                format!("z11{k}"),
+                format!("y1{k}"),
+                format!("y1{up}"),
+            ],
+        );
+        face(
+            &mut t,
+            &format!("fy0{k}"),
+            "minimal",
+            [
+                format!("z00{k}"),
+                format!("z10{k}"),
+                format!("x0{k}"),
+                format!("x0{up}"),
+            ],
+        );
+        face(
+            &mut t,
+            &format!("fy1{k}"),
+            "minimal",
+            [
+                format!("z01{k}"),
+                format!("z11{k}"),
+                format!("x1{k}"),
+                format!("x1{up}"),
+            ],
+        );
+    }
+    for (k, side) in [(0, "F6"), (1, "F5")] {
+        writeln!(
+            t,
+            "[[volume]]\nname = \"b{k}\"\nlinear = \"direct\"\nF1 = \"fx0{k}\"\nF2 = \"fx1{k}\"\nF3 = \"fy0{k}\"\nF4 = \"fy1{k}\"\nF5 = \"fz{k}\"\nF6 = \"fz{}\"{}",
+            k + 1,
+            if orthogonal { format!("\northogonal = [\"{side}\"]") } else { String::new() }
+        )
+        .unwrap();
+    }
+    t
+}
+
+#[test]
+fn orthogonality_at_an_interior_face_removes_the_kink_across_it() {
+    let kink = |g: &job::Generated| g.report.face_interfaces[0].smoothness;
+    let plain = generate(&sheared_pair(0.6, false, 9));
+    let ortho = generate(&sheared_pair(0.6, true, 9));
+    let fine = generate(&sheared_pair(0.6, true, 17));
+    let (p, o, f) = (kink(&plain), kink(&ortho), kink(&fine));
+    // The sheared volume's lines lean by atan(0.6) = 31° at the face; made orthogonal on both
+    // sides, the kink is a third of that and halves under refinement (first order, as in 2D;
+    // measured 11.2°, 6.0°, 3.2° mean at 9, 17, 33 nodes).
+    assert!(
+        (p.kink_mean_deg - 0.6f64.atan().to_degrees()).abs() < 1e-6,
+        "{p:?}"
+    );
+    assert!(o.kink_mean_deg < 0.4 * p.kink_mean_deg, "{o:?} vs {p:?}");
+    assert!(f.kink_mean_deg < 0.6 * o.kink_mean_deg, "{f:?} vs {o:?}");
+    assert!(o.spacing_ratio_max < p.spacing_ratio_max);
+    for v in ortho.report.volumes.iter().chain(&fine.report.volumes) {
+        assert_eq!(v.quality.folded_cells, 0);
+        assert!(v.picard.converged);
+    }
+    // The volume below is a box: its lines were orthogonal already and stay the box's grid.
+    let below = volume(&ortho.blocks[0].1);
+    let want = Grid3::rectilinear(
+        &linspace(0.0, 1.0, 9),
+        &linspace(0.0, 1.0, 9),
+        &linspace(-1.0, 0.0, 9),
+    );
+    for c in 0..3 {
+        for (a, w) in below.coord(c).iter().zip(want.coord(c)) {
+            assert!((a - w).abs() < 1e-9, "{a} vs {w}");
+        }
+    }
+}

@@ -480,6 +480,11 @@ pub struct VolumeSpec {
     /// With `wall`: also make the grid lines leave the wall along its normal
     /// ([`crate::elliptic::wall_normal`]; default true).
     pub wall_orthogonal: Option<bool>,
+    /// Faces ("F1" … "F6") that the grid lines leave along the face's normal
+    /// ([`crate::elliptic::orthogonal3d`]): on both sides of an interior face of a volume
+    /// topology, the lines cross it without a kink.
+    #[serde(default)]
+    pub orthogonal: Vec<String>,
     #[serde(rename = "E1")]
     pub e1: Option<EdgeSpec>,
     #[serde(rename = "E2")]

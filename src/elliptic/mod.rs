@@ -20,6 +20,7 @@ pub mod harmonic;
 pub mod nested;
 pub mod nested3d;
 pub mod orthogonal;
+pub mod orthogonal3d;
 pub mod picard;
 pub mod poisson2d;
 pub mod poisson3d;

@@ -30,13 +30,12 @@
 //! fold-free; early variants folded intermediate grids of the C–O block).
 
 use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
-use crate::algebraic::control3d::Control3;
 use crate::algebraic::transform::ParamGrid;
 use crate::algebraic::ControlKind;
+use crate::elliptic::orthogonal3d::{grid_volume_corrected, FaceCorrections};
 use crate::elliptic::picard::VolumeResult;
-use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep};
-use crate::elliptic::poisson3d;
-use crate::grid::faces::{block_node, face_dims, normal, step_in, tangents, Faces, FACE_NAMES};
+use crate::elliptic::picard::{PicardParams, PicardStep};
+use crate::grid::faces::{block_node, face_dims, normal, step_in, tangents, Faces};
 use crate::solve::stencil19::Stencil19;
 use crate::solve::LinearSolver;
 use crate::{Error, Grid2, Grid3, Result};
@@ -49,7 +48,7 @@ pub const MAX_PASSES: usize = 6;
 /// heights are then within ~0.5 %).
 pub const TOLERANCE: f64 = 0.05;
 /// Picard tolerance of the intermediate solves (relative to the block's diameter).
-const LOOSE_TOLERANCE: f64 = 1e-8;
+pub const LOOSE_TOLERANCE: f64 = 1e-8;
 /// Largest change of a node's parameter in one pass (factor).
 const MAX_RATIO: f64 = 4.0;
 /// With `orthogonal`, passes also stop only once every first off-wall node is within this sine
@@ -313,7 +312,7 @@ pub fn correct_side_faces(
 /// `pg` from the distances in `x` towards the column goals (filled from the first grid seen,
 /// the uncorrected one, if empty). Returns the largest |ln(goal/d)| before the pass.
 /// With `ortho`, distances are measured as [`wall_normal::TangentGoals::distance`].
-fn remap_volume(
+pub(crate) fn remap_volume(
     pg: &mut ParamGrid3,
     x: &Grid3,
     targets: &WallTargets,
@@ -396,7 +395,8 @@ pub fn grid_volume_wall(
 /// of the interior columns of wall face `w` to [`WallTargets`] (module docs), with
 /// `opts.orthogonal` also the directions of the lines leaving the wall ([`wall_normal`]): at
 /// most [`MAX_PASSES`] remaps of the algebraic parameters, each followed by a Picard solve from
-/// the current grid. The returned history is the concatenation of all solves.
+/// the current grid ([`crate::elliptic::orthogonal3d`]). The returned history is the
+/// concatenation of all solves.
 pub fn grid_volume_wall_with(
     faces: &Faces,
     w: usize,
@@ -406,112 +406,13 @@ pub fn grid_volume_wall_with(
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<VolumeResult> {
-    let targets = WallTargets::new(faces, w, place)?;
-    let mut pg = bilinear(&EdgeFunctions3::arclength(faces), place)?;
-    let mut x = crate::algebraic::transfinite3d::transfinite(faces);
-    faces.apply_to(&mut x);
-    let mut info: Option<PicardInfo> = None;
-    let mut goal = Vec::new();
-    let mut tangent_goal: Option<wall_normal::TangentGoals> = None;
-    // With `orthogonal`: the fold-free intermediate grid with the smallest largest angle at
-    // the wall, and its parameters (the fallback if a later pass folds the grid).
-    let mut best: Option<(f64, ParamGrid3, Grid3)> = None;
-    let folded = |x: &Grid3| crate::quality::quality3d::quality3d(x).folded_cells;
-    // Intermediate solves only need the near-wall distances to well under TOLERANCE.
-    let loose = PicardParams {
-        tolerance: params.tolerance.max(LOOSE_TOLERANCE),
-        ..params.clone()
+    let mut orthogonal = [false; 6];
+    orthogonal[w] = opts.orthogonal;
+    let c = FaceCorrections {
+        wall: Some(w),
+        orthogonal,
     };
-    for pass in 0..=MAX_PASSES {
-        let last = pass == MAX_PASSES;
-        if pass > 0 {
-            let mut trial = pg.clone();
-            if opts.orthogonal && tangent_goal.is_none() {
-                tangent_goal = Some(wall_normal::TangentGoals::new(&pg, &x, w));
-            }
-            let err = remap_volume(&mut trial, &x, &targets, &mut goal, tangent_goal.as_ref());
-            let angle = match &tangent_goal {
-                Some(tg) => wall_normal::shift_tangential(&pg, &mut trial, &x, w, tg),
-                None => 0.0,
-            };
-            let done = err <= TOLERANCE && angle <= ANGLE_TOLERANCE;
-            if !done {
-                pg = trial;
-            }
-            if done || last {
-                // A final solve to the asked tolerance from the current grid.
-                let ctrl = Control3::from_algebraic(&pg);
-                let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress);
-                let fine = step.is_ok() && (!opts.orthogonal || folded(&x) == 0);
-                let (bpg, bx) = match (step, best.take()) {
-                    (Ok(step), _) if fine => {
-                        append(&mut info, step);
-                        break;
-                    }
-                    (Ok(step), None) => {
-                        append(&mut info, step);
-                        break;
-                    }
-                    (Err(e), None) => return Err(e),
-                    (_, Some((_, bpg, bx))) => (bpg, bx),
-                };
-                // The orthogonal passes folded the grid: back to the best fold-free one.
-                (pg, x) = (bpg, bx);
-                let ctrl = Control3::from_algebraic(&pg);
-                let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress)?;
-                append(&mut info, step);
-                break;
-            }
-        }
-        let ctrl = Control3::from_algebraic(&pg);
-        if !ctrl.all_finite() {
-            return Err(Error::input(
-                place,
-                format!(
-                    "the wall-spacing remap at {} made the control functions singular",
-                    FACE_NAMES[w]
-                ),
-            ));
-        }
-        match poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress) {
-            Ok(step) => append(&mut info, step),
-            Err(e) => match best.take() {
-                // A failed orthogonal pass: finish from the best fold-free grid.
-                Some((_, bpg, bx)) if opts.orthogonal => {
-                    (pg, x) = (bpg, bx);
-                    let ctrl = Control3::from_algebraic(&pg);
-                    let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress)?;
-                    append(&mut info, step);
-                    break;
-                }
-                _ => return Err(e),
-            },
-        }
-        if opts.orthogonal {
-            let q = crate::quality::quality3d::quality3d(&x);
-            let score = q.faces[w].orthogonality_max_deg;
-            if q.folded_cells == 0 && best.as_ref().is_none_or(|b| score < b.0) {
-                best = Some((score, pg.clone(), x.clone()));
-            }
-        }
-    }
-    Ok(VolumeResult {
-        grid: x,
-        picard: info.expect("at least one solve"),
-    })
-}
-
-/// Appends the history of one solve to that of the previous ones.
-fn append(all: &mut Option<PicardInfo>, step: PicardInfo) {
-    match all {
-        None => *all = Some(step),
-        Some(a) => {
-            a.steps += step.steps;
-            a.history.extend(step.history);
-            a.converged = step.converged;
-            a.final_residual = step.final_residual;
-        }
-    }
+    grid_volume_corrected(faces, &c, None, solver, params, place, progress)
 }
 
 /// A wall spacing needs algebraic control functions (Laplace grids lose it).

@@ -130,7 +130,15 @@ pub struct TangentGoals {
     per_col: usize,
     /// The uncorrected parameters: shifts are clamped to a fraction of their gaps.
     start: ParamGrid3,
+    /// Shifts limited only by keeping each parameter line monotone (every gap at least
+    /// [`MIN_GAP`] of the uncorrected one), not to [`CLAMP`] of the gaps: for interior faces,
+    /// whose lines may have to turn by the whole angle of a neighbouring volume's lines.
+    free: bool,
 }
+
+/// With [`TangentGoals::free`]: the smallest gap between neighbouring parameters along a line,
+/// as a fraction of the uncorrected gap (the gap [`CLAMP`] keeps at the least).
+pub const MIN_GAP: f64 = 1.0 - 2.0 * CLAMP;
 
 /// Visits the interior nodes j = 1 … n − 2 of the interior columns of wall face `w`: `f(slot,
 /// column (a, b), j, block node, r = x_j − x₀, unit normal at the foot)`.
@@ -165,8 +173,9 @@ fn tangential(r: V, n: V) -> V {
 }
 
 impl TangentGoals {
-    /// Offsets t⁰ and weights ψ from grid `x` and its parameters `pg` (module docs).
-    pub fn new(pg: &ParamGrid3, x: &Grid3, w: usize) -> Self {
+    /// Offsets t⁰ and weights ψ from grid `x` and its parameters `pg` (module docs); with
+    /// `free` the shifts are bounded by monotonicity only ([`TangentGoals::free`]).
+    pub fn new(pg: &ParamGrid3, x: &Grid3, w: usize, free: bool) -> Self {
         let dims = x.dims();
         let (d, lo) = normal(w);
         let pt = |a: usize, b: usize| {
@@ -174,12 +183,18 @@ impl TangentGoals {
             x.point(n[0], n[1], n[2])
         };
         let (mut t0, mut weight) = (Vec::new(), Vec::new());
-        for_nodes(x, w, |_, [a, b], _, n, r, nrm| {
+        for_nodes(x, w, |_, [a, b], j, n, r, nrm| {
             let width = 0.5
                 * norm(sub(pt(a + 1, b), pt(a - 1, b))).min(norm(sub(pt(a, b + 1), pt(a, b - 1))));
             let v = pg.at(flat(n, dims))[d];
             let v = if lo { v } else { 1.0 - v };
-            let fade = 1.0 / (1.0 + (norm(r) / (LAYER * width)).powi(2));
+            // A wall layer of LAYER wall cell widths; at a free (interior) face the first
+            // node is made normal and the goal fades over LAYER nodes.
+            let fade = if free {
+                1.0 / (1.0 + ((j - 1) as f64 / LAYER).powi(2))
+            } else {
+                1.0 / (1.0 + (norm(r) / (LAYER * width)).powi(2))
+            };
             let psi = fade_weight(v.clamp(0.0, 1.0)) * fade;
             let (psi, t) = match nrm {
                 Some(nv) if psi.is_finite() => (psi, tangential(r, nv)),
@@ -193,6 +208,7 @@ impl TangentGoals {
             weight,
             per_col: dims[d] - 2,
             start: pg.clone(),
+            free,
         }
     }
 
@@ -275,19 +291,54 @@ pub fn shift_tangential(
             shifts.push((p, da, db));
         }
     });
-    // Increments on the current parameters, the result clamped to CLAMP of the gaps of the
-    // uncorrected ones (so that every parameter line stays monotone through all passes).
+    // Increments on the parameters of this pass so far (another face's pass may have moved
+    // this axis: the wall's normal remap, or its own tangential shift). The total shift of
+    // this face is clamped to CLAMP of the uncorrected gaps (and of the current ones where this
+    // pass moved the axis before), so that every parameter line stays monotone through all
+    // passes; `free` goals only keep every gap at MIN_GAP of the uncorrected one.
     for (axis, pick) in [(ta, 0usize), (tb, 1)] {
         let q0 = param(&goals.start, axis);
-        let q = param(old, axis).to_vec();
+        let q = param(old, axis);
+        let base = param(trial, axis).to_vec();
         let out = param_mut(trial, axis);
+        let s = st[axis];
         for &(p, da, db) in &shifts {
             let dv = if pick == 0 { da } else { db };
-            let (lo_gap, hi_gap) = (q0[p] - q0[p - st[axis]], q0[p + st[axis]] - q0[p]);
+            let moved = base[p] - q[p];
+            let (mut lo_gap, mut hi_gap) = (q0[p] - q0[p - s], q0[p + s] - q0[p]);
+            if moved != 0.0 {
+                lo_gap = lo_gap.min(base[p] - base[p - s]);
+                hi_gap = hi_gap.min(base[p + s] - base[p]);
+            }
             if lo_gap.is_nan() || hi_gap.is_nan() || lo_gap <= 0.0 || hi_gap <= 0.0 {
                 continue;
             }
-            out[p] = (q[p] + dv).clamp(q0[p] - CLAMP * lo_gap, q0[p] + CLAMP * hi_gap);
+            out[p] = if goals.free {
+                base[p] + dv
+            } else {
+                (base[p] + dv).clamp(
+                    q0[p] + moved - CLAMP * lo_gap,
+                    q0[p] + moved + CLAMP * hi_gap,
+                )
+            };
+        }
+        if goals.free {
+            // Monotone again: upwards along the axis, then downwards (the shifted nodes are
+            // interior nodes; their line's ends are face nodes and stay).
+            let mut idx: Vec<usize> = shifts.iter().map(|x| x.0).collect();
+            idx.sort_unstable();
+            for &p in &idx {
+                let floor = out[p - s] + MIN_GAP * (q0[p] - q0[p - s]);
+                if out[p].is_nan() || out[p] < floor {
+                    out[p] = floor;
+                }
+            }
+            for &p in idx.iter().rev() {
+                let ceil = out[p + s] - MIN_GAP * (q0[p + s] - q0[p]);
+                if out[p].is_nan() || out[p] > ceil {
+                    out[p] = ceil;
+                }
+            }
         }
     }
     err

@@ -104,7 +104,7 @@ pub(super) fn generate(case: &LoadedCase, topo: &Topology3) -> Result<Gridded3> 
 }
 
 /// The transfinite start grids of the volumes of a topology (from the gridded faces).
-pub(super) fn start_grids(case: &LoadedCase, topo: &Topology3) -> Result<Vec<(String, Block)>> {
+pub fn start_grids(case: &LoadedCase, topo: &Topology3) -> Result<Vec<(String, Block)>> {
     let (grids, _) = grid_faces(case, topo)?;
     let file = case.path.display().to_string();
     (0..topo.volumes.len())
@@ -115,8 +115,9 @@ pub(super) fn start_grids(case: &LoadedCase, topo: &Topology3) -> Result<Vec<(St
         .collect()
 }
 
-/// The grid of every face (in its own indices) with its report, in parallel.
-fn grid_faces(case: &LoadedCase, topo: &Topology3) -> Result<(Vec<Grid2<3>>, Vec<FaceReport>)> {
+/// The grid of every face of a volume topology (in its own indices) with its report, in
+/// parallel.
+pub fn grid_faces(case: &LoadedCase, topo: &Topology3) -> Result<(Vec<Grid2<3>>, Vec<FaceReport>)> {
     let nodes = case.topology_nodes()?;
     let file = case.path.display().to_string();
     let done: Vec<(Grid2<3>, FaceReport)> = (0..topo.faces.blocks.len())

@@ -3,12 +3,15 @@
 
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
+use crate::case::spec::VolumeSpec;
 use crate::case::volume::{volume_faces, volume_name, volume_place, wall_face};
 use crate::case::LoadedCase;
+use crate::elliptic::orthogonal3d::{grid_volume_corrected, FaceCorrections};
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::volume::{grid_volume, progress_enabled};
-use crate::elliptic::wall::{check_kind, grid_volume_wall_with, wall_targets, WallOptions};
+use crate::elliptic::wall::{check_kind, wall_targets, WallOptions};
 use crate::elliptic::wall_normal::{wall_figure, WallFigure};
+use crate::grid::faces::parse_face;
 use crate::grid::faces::Faces;
 use crate::io::Block;
 use crate::quality::quality3d::{quality3d, QualityReport3};
@@ -82,23 +85,14 @@ pub(crate) fn solve_volume(
         }
     };
     let wall = wall_face(v, place)?;
-    let r = match wall {
-        Some(w) => {
-            check_kind(spec.solver.control, place)?;
-            let opts = WallOptions {
-                orthogonal: v
-                    .wall_orthogonal
-                    .unwrap_or(WallOptions::default().orthogonal),
-            };
-            grid_volume_wall_with(faces, w, opts, solver.as_mut(), params, place, &mut cb)?
-        }
-        None if v.wall_orthogonal.is_some() => {
-            return Err(Error::input(
-                place,
-                "wall_orthogonal needs wall = \"F1\" … \"F6\"",
-            ))
-        }
-        None => grid_volume(
+    let c = corrections(v, wall, place)?;
+    if c.wall.is_some() {
+        check_kind(spec.solver.control, place)?;
+    }
+    let r = if c.any() {
+        grid_volume_corrected(faces, &c, None, solver.as_mut(), params, place, &mut cb)?
+    } else {
+        grid_volume(
             faces,
             None,
             spec.solver.control,
@@ -106,7 +100,7 @@ pub(crate) fn solve_volume(
             params,
             place,
             &mut cb,
-        )?,
+        )?
     };
     if let Some(pb) = pb {
         pb.finish_and_clear();
@@ -128,6 +122,40 @@ pub(crate) fn solve_volume(
         wall,
     };
     Ok((name, Block::Volume(r.grid), rep))
+}
+
+/// The corrections a `[[volume]]` table asks for: the wall (`wall`, with `wall_orthogonal`,
+/// default true) and the `orthogonal` faces.
+pub(crate) fn corrections(
+    v: &VolumeSpec,
+    wall: Option<usize>,
+    place: &str,
+) -> Result<FaceCorrections> {
+    let mut orthogonal = [false; 6];
+    for name in &v.orthogonal {
+        let f = parse_face(name).ok_or_else(|| {
+            Error::input(
+                place,
+                format!("orthogonal = [\"{name}\"]: expected faces F1, …, F6"),
+            )
+        })?;
+        orthogonal[f] = true;
+    }
+    match wall {
+        Some(w) => {
+            orthogonal[w] |= v
+                .wall_orthogonal
+                .unwrap_or(WallOptions::default().orthogonal)
+        }
+        None if v.wall_orthogonal.is_some() => {
+            return Err(Error::input(
+                place,
+                "wall_orthogonal needs wall = \"F1\" … \"F6\"",
+            ))
+        }
+        None => {}
+    }
+    Ok(FaceCorrections { wall, orthogonal })
 }
 
 /// The transfinite start grid of volume k.

@@ -1,0 +1,233 @@
+//! Orthogonality at chosen faces of a volume block and the wall spacing at a wall face: the
+//! 3D counterpart of Section 2.4 (METHOD.md §3) through the algebraic map, the interior still
+//! the elliptic solution of [86–88].
+//!
+//! The composite mapping x = X(S(ξ)) is kept; only S, the algebraic map C → P [70–72],
+//! changes near the chosen faces: at a wall face the normal parameter is remapped column by
+//! column so that the distances from the wall follow the edges' profiles ([`super::wall`]),
+//! and at every orthogonal face (the wall with `wall_orthogonal`, and interior faces of a
+//! volume topology, so that grid lines cross them without a kink when both volumes are made
+//! orthogonal there) the tangential parameters of the nodes near the face are shifted so that
+//! the grid lines leave it along its normal ([`super::wall_normal`]). Each pass re-solves from
+//! the current grid; passes stop when the heights are within [`TOLERANCE`] and the first lines
+//! within [`ANGLE_TOLERANCE`] of the normal at every chosen face, after at most
+//! [`MAX_PASSES`]. A pass that folds the grid is not kept: the result is then the fold-free
+//! pass with the smallest largest angle at the chosen faces.
+
+use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
+use crate::algebraic::control3d::Control3;
+use crate::algebraic::ControlKind;
+use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep, VolumeResult};
+use crate::elliptic::wall::{
+    remap_volume, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES, TOLERANCE,
+};
+use crate::elliptic::wall_normal::{shift_tangential, TangentGoals};
+use crate::elliptic::{nested3d, poisson3d};
+use crate::grid::faces::{Faces, FACE_NAMES};
+use crate::solve::stencil19::Stencil19;
+use crate::solve::LinearSolver;
+use crate::{Error, Grid3, Result};
+
+/// What a volume block's passes hold: the wall spacing at `wall`, orthogonality at the faces
+/// flagged in `orthogonal` (F1 … F6).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FaceCorrections {
+    pub wall: Option<usize>,
+    pub orthogonal: [bool; 6],
+}
+
+impl FaceCorrections {
+    /// True if there is anything to correct.
+    pub fn any(&self) -> bool {
+        self.wall.is_some() || self.orthogonal.contains(&true)
+    }
+}
+
+/// Grids a volume block with the corrections `c` (module docs), from `start` (boundary nodes
+/// replaced by the faces') or, without one, from the nested solve of the uncorrected block.
+/// The returned history is the concatenation of all solves.
+#[allow(clippy::too_many_arguments)]
+pub fn grid_volume_corrected(
+    faces: &Faces,
+    c: &FaceCorrections,
+    start: Option<Grid3>,
+    solver: &mut dyn LinearSolver<Stencil19>,
+    params: &PicardParams,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<VolumeResult> {
+    let targets = c
+        .wall
+        .map(|w| WallTargets::new(faces, w, place))
+        .transpose()?;
+    let ortho: Vec<usize> = (0..6).filter(|&f| c.orthogonal[f]).collect();
+    let mut pg = bilinear(&EdgeFunctions3::arclength(faces), place)?;
+    // Intermediate solves only need the near-face positions to well under the tolerances.
+    let loose = PicardParams {
+        tolerance: params.tolerance.max(LOOSE_TOLERANCE),
+        ..params.clone()
+    };
+    let mut info: Option<PicardInfo> = None;
+    // Pass 0: the uncorrected grid (nested iteration from the faces, or from `start`).
+    let mut x = match start {
+        Some(g) if g.dims() == faces.dims() => {
+            let mut x = g;
+            faces.apply_to(&mut x);
+            let ctrl = Control3::from_algebraic(&pg);
+            append(
+                &mut info,
+                poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)?,
+            );
+            x
+        }
+        Some(g) => {
+            return Err(Error::input(
+                place,
+                format!(
+                    "start grid has {:?} nodes but the faces need {:?}",
+                    g.dims(),
+                    faces.dims()
+                ),
+            ))
+        }
+        None => {
+            let (r, _) = nested3d::grid_volume_nested(
+                faces,
+                ControlKind::Algebraic,
+                solver,
+                &loose,
+                place,
+                progress,
+            )?;
+            append(&mut info, r.picard);
+            r.grid
+        }
+    };
+    if !c.any() {
+        return Ok(VolumeResult {
+            grid: x,
+            picard: info.expect("one solve"),
+        });
+    }
+    let mut goal = Vec::new();
+    let mut tangent_goals: Vec<(usize, TangentGoals)> = Vec::new();
+    // The fold-free grid with the smallest largest angle at the orthogonal faces, and its
+    // parameters (the fallback if a later pass folds the grid).
+    let mut best: Option<(f64, ParamGrid3, Grid3)> = None;
+    let score = |x: &Grid3| {
+        let q = crate::quality::quality3d::quality3d(x);
+        let worst = ortho
+            .iter()
+            .map(|&f| q.faces[f].orthogonality_max_deg)
+            .fold(0.0, f64::max);
+        (q.folded_cells, worst)
+    };
+    if !ortho.is_empty() {
+        if let (0, s) = score(&x) {
+            best = Some((s, pg.clone(), x.clone()));
+        }
+    }
+    for pass in 1..=MAX_PASSES {
+        let last = pass == MAX_PASSES;
+        let mut trial = pg.clone();
+        if tangent_goals.is_empty() {
+            tangent_goals = ortho
+                .iter()
+                .map(|&f| (f, TangentGoals::new(&pg, &x, f, Some(f) != c.wall)))
+                .collect();
+        }
+        let err = match (&targets, c.wall) {
+            (Some(t), Some(w)) => {
+                let tg = tangent_goals.iter().find(|(f, _)| *f == w).map(|g| &g.1);
+                remap_volume(&mut trial, &x, t, &mut goal, tg)
+            }
+            _ => 0.0,
+        };
+        let angle = tangent_goals
+            .iter()
+            .map(|(f, g)| shift_tangential(&pg, &mut trial, &x, *f, g))
+            .fold(0.0, f64::max);
+        let done = err <= TOLERANCE && angle <= ANGLE_TOLERANCE;
+        if !done {
+            pg = trial;
+        }
+        if done || last {
+            // A final solve to the asked tolerance from the current grid.
+            let ctrl = Control3::from_algebraic(&pg);
+            let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress);
+            let fine = step.is_ok() && (ortho.is_empty() || score(&x).0 == 0);
+            let (bpg, bx) = match (step, best.take()) {
+                (Ok(step), _) if fine => {
+                    append(&mut info, step);
+                    break;
+                }
+                (Ok(step), None) => {
+                    append(&mut info, step);
+                    break;
+                }
+                (Err(e), None) => return Err(e),
+                (_, Some((_, bpg, bx))) => (bpg, bx),
+            };
+            // The orthogonal passes folded the grid: back to the best fold-free one.
+            (pg, x) = (bpg, bx);
+            let ctrl = Control3::from_algebraic(&pg);
+            append(
+                &mut info,
+                poisson3d::solve(&mut x, &ctrl, solver, params, place, progress)?,
+            );
+            break;
+        }
+        let ctrl = Control3::from_algebraic(&pg);
+        if !ctrl.all_finite() {
+            return Err(Error::input(
+                place,
+                format!(
+                    "the correction at {} made the control functions singular",
+                    ortho
+                        .iter()
+                        .chain(c.wall.iter())
+                        .map(|&f| FACE_NAMES[f])
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ));
+        }
+        match poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress) {
+            Ok(step) => append(&mut info, step),
+            Err(e) => match best.take() {
+                // A failed orthogonal pass: finish from the best fold-free grid.
+                Some((_, bpg, bx)) => {
+                    (pg, x) = (bpg, bx);
+                    let ctrl = Control3::from_algebraic(&pg);
+                    let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress)?;
+                    append(&mut info, step);
+                    break;
+                }
+                _ => return Err(e),
+            },
+        }
+        if !ortho.is_empty() {
+            let (folded, s) = score(&x);
+            if folded == 0 && best.as_ref().is_none_or(|b| s < b.0) {
+                best = Some((s, pg.clone(), x.clone()));
+            }
+        }
+    }
+    Ok(VolumeResult {
+        grid: x,
+        picard: info.expect("at least one solve"),
+    })
+}
+
+/// Appends the history of one solve to that of the previous ones.
+fn append(all: &mut Option<PicardInfo>, step: PicardInfo) {
+    match all {
+        None => *all = Some(step),
+        Some(a) => {
+            a.steps += step.steps;
+            a.history.extend(step.history);
+            a.converged = step.converged;
+            a.final_residual = step.final_residual;
+        }
+    }
+}
