@@ -77,7 +77,7 @@ fn main() -> ellipgrid::Result<()> {
     };
     let p = dir.join("grid.x");
     time("plot3d", &p, &|| {
-        write_plot3d(&p, &[blocks[0].1.clone()], &Plot3dFormat::default(), None)
+        write_plot3d(&p, &[&blocks[0].1], &Plot3dFormat::default(), None)
     })?;
     let t = Instant::now();
     let mesh = Mesh::build("bench", &blocks, &conn, None)?;

@@ -209,7 +209,7 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
             if fmt.is_none() && blocks.len() > 1 {
                 f.multi_block = true;
             }
-            let only: Vec<Block> = blocks.iter().map(|(_, b)| b.clone()).collect();
+            let only: Vec<&Block> = blocks.iter().map(|(_, b)| b).collect();
             let ib = if f.iblank {
                 input.iblank.as_deref()
             } else {

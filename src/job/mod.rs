@@ -376,12 +376,12 @@ fn write_each(
     for (path, &kind) in paths.iter().zip(kinds) {
         match kind {
             OutputKind::Plot3d => {
-                let only: Vec<Block> = blocks.iter().map(|(_, b)| b.clone()).collect();
+                let only: Vec<&Block> = blocks.iter().map(|(_, b)| b).collect();
                 let mut f = *fmt;
                 if only.len() > 1 {
                     f.multi_block = true;
                 }
-                if only.iter().any(|b| !matches!(b, Block::Planar(_))) {
+                if only.iter().any(|b| !matches!(b, &&Block::Planar(_))) {
                     f.two_d = false;
                 }
                 plot3d::write_plot3d(path, &only, &f, None)?;
