@@ -4,9 +4,10 @@
 //! OpenFOAM's order: internal faces upper-triangular (by owner, then neighbour; normals
 //! from owner to neighbour), then the boundary faces patch by patch (normals outward).
 //! Numbers are written in ASCII with the shortest representation that reads back to the same
-//! f64.
+//! f64, formatted in parallel pieces written in order ([`crate::io::text`]).
 
-use crate::io::mesh::{BcKind, Mesh};
+use crate::io::mesh::{BcKind, Face, Mesh};
+use crate::io::text::{push_f64, push_int, write_ranges, CHUNK};
 use crate::io::{staged, write_atomic};
 use crate::{Error, Result};
 use std::io::Write;
@@ -93,60 +94,78 @@ pub fn write_polymesh(dir: &Path, mesh: &Mesh) -> Result<()> {
     let nbound: usize = mesh.boundary.iter().map(Vec::len).sum();
     let note = format!(
         "nPoints:{} nCells:{} nFaces:{} nInternalFaces:{nint}",
-        mesh.points.len(),
+        mesh.npoints(),
         mesh.ncells(),
         nint + nbound
     );
+    let chunks = mesh.cell_chunks(CHUNK);
+    let nchunks = chunks.len();
+    // boundary faces after the internal ones, in pieces of CHUNK
+    let bfaces: Vec<&Face> = mesh.boundary.iter().flatten().collect();
+    let nbchunks = bfaces.len().div_ceil(CHUNK);
+    let bpiece = |c: usize| &bfaces[c * CHUNK..((c + 1) * CHUNK).min(bfaces.len())];
     staged(|| {
         write_atomic(&dir.join("points"), |w| {
             header(w, "vectorField", "points", None)?;
-            writeln!(w, "{}\n(", mesh.points.len())?;
-            for p in &mesh.points {
-                writeln!(w, "({} {} {})", p[0], p[1], p[2])?;
-            }
+            writeln!(w, "{}\n(", mesh.npoints())?;
+            write_ranges(w, mesh.npoints().div_ceil(CHUNK), |c, b| {
+                mesh.points_in(c * CHUNK..(c + 1) * CHUNK, |_, p| {
+                    b.push(b'(');
+                    push_f64(b, p[0]);
+                    b.push(b' ');
+                    push_f64(b, p[1]);
+                    b.push(b' ');
+                    push_f64(b, p[2]);
+                    b.extend_from_slice(b")\n");
+                })
+            })?;
             writeln!(w, ")")
         })?;
+        let face = |b: &mut Vec<u8>, f: &[u32; 4]| {
+            b.extend_from_slice(b"4(");
+            for (k, v) in f.iter().enumerate() {
+                push_int(b, *v);
+                b.push(if k < 3 { b' ' } else { b')' });
+            }
+            b.push(b'\n');
+        };
         write_atomic(&dir.join("faces"), |w| {
             header(w, "faceList", "faces", None)?;
             writeln!(w, "{}\n(", nint + nbound)?;
-            let mut r = Ok(());
-            mesh.for_each_internal_face(|f, _, _| {
-                if r.is_ok() {
-                    r = writeln!(w, "4({} {} {} {})", f[0], f[1], f[2], f[3]);
+            write_ranges(w, nchunks + nbchunks, |c, b| {
+                if c < nchunks {
+                    let (blk, ref cells) = chunks[c];
+                    mesh.internal_faces_in(blk, cells.clone(), |f, _, _| face(b, f));
+                } else {
+                    bpiece(c - nchunks).iter().for_each(|f| face(b, &f.nodes));
                 }
-            });
-            r?;
-            for f in mesh.boundary.iter().flatten() {
-                let n = f.nodes;
-                writeln!(w, "4({} {} {} {})", n[0], n[1], n[2], n[3])?;
-            }
+            })?;
             writeln!(w, ")")
         })?;
+        let label = |b: &mut Vec<u8>, v: usize| {
+            push_int(b, v);
+            b.push(b'\n');
+        };
         write_atomic(&dir.join("owner"), |w| {
             header(w, "labelList", "owner", Some(&note))?;
             writeln!(w, "{}\n(", nint + nbound)?;
-            let mut r = Ok(());
-            mesh.for_each_internal_face(|_, o, _| {
-                if r.is_ok() {
-                    r = writeln!(w, "{o}");
+            write_ranges(w, nchunks + nbchunks, |c, b| {
+                if c < nchunks {
+                    let (blk, ref cells) = chunks[c];
+                    mesh.internal_faces_in(blk, cells.clone(), |_, o, _| label(b, o));
+                } else {
+                    bpiece(c - nchunks).iter().for_each(|f| label(b, f.cell));
                 }
-            });
-            r?;
-            for f in mesh.boundary.iter().flatten() {
-                writeln!(w, "{}", f.cell)?;
-            }
+            })?;
             writeln!(w, ")")
         })?;
         write_atomic(&dir.join("neighbour"), |w| {
             header(w, "labelList", "neighbour", Some(&note))?;
             writeln!(w, "{nint}\n(")?;
-            let mut r = Ok(());
-            mesh.for_each_internal_face(|_, _, n| {
-                if r.is_ok() {
-                    r = writeln!(w, "{n}");
-                }
-            });
-            r?;
+            write_ranges(w, nchunks, |c, b| {
+                let (blk, ref cells) = chunks[c];
+                mesh.internal_faces_in(blk, cells.clone(), |_, _, n| label(b, n));
+            })?;
             writeln!(w, ")")
         })?;
         write_atomic(&dir.join("boundary"), |w| {

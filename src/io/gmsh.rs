@@ -5,6 +5,7 @@
 //! numbers + 1; every node is listed once, with the first block's entity.
 
 use crate::io::mesh::{Cells, Mesh};
+use crate::io::text::{push_f64, push_int, write_par, write_ranges, CHUNK};
 use crate::io::write_atomic;
 use crate::Result;
 use std::io::Write;
@@ -26,13 +27,17 @@ fn bbox(mesh: &Mesh, nodes: impl Iterator<Item = u32>) -> [f64; 6] {
         f64::NEG_INFINITY,
     ];
     for n in nodes {
-        let p = mesh.points[n as usize];
-        for c in 0..3 {
-            b[c] = b[c].min(p[c]);
-            b[c + 3] = b[c + 3].max(p[c]);
-        }
+        grow(&mut b, mesh.point(n));
     }
     b
+}
+
+/// Widens bounding box `b` to hold `p`.
+fn grow(b: &mut [f64; 6], p: [f64; 3]) {
+    for c in 0..3 {
+        b[c] = b[c].min(p[c]);
+        b[c + 3] = b[c + 3].max(p[c]);
+    }
 }
 
 /// A name inside Gmsh's double quotes.
@@ -79,14 +84,10 @@ pub fn write_msh(path: &Path, mesh: &Mesh) -> Result<()> {
             Ok(())
         };
         let blocks = |w: &mut dyn Write| -> std::io::Result<()> {
-            for (k, b) in mesh.blocks.iter().enumerate() {
-                writeln!(
-                    w,
-                    "{} {} 1 {} 0",
-                    k + 1,
-                    fmt(bbox(mesh, b.ids.iter().copied())),
-                    k + 1
-                )?;
+            for k in 0..mesh.blocks.len() {
+                let mut bb = bbox(mesh, std::iter::empty());
+                mesh.block_points(k, |p| grow(&mut bb, p));
+                writeln!(w, "{} {} 1 {} 0", k + 1, fmt(bb), k + 1)?;
             }
             Ok(())
         };
@@ -94,14 +95,22 @@ pub fn write_msh(path: &Path, mesh: &Mesh) -> Result<()> {
         families(w)?;
         blocks(w)?;
         writeln!(w, "$EndEntities")?;
-        let np = mesh.points.len();
+        let np = mesh.npoints();
         writeln!(w, "$Nodes\n1 {np} 1 {np}\n{dim} 1 0 {np}")?;
-        for k in 1..=np {
-            writeln!(w, "{k}")?;
-        }
-        for p in &mesh.points {
-            writeln!(w, "{} {} {}", p[0], p[1], p[2])?;
-        }
+        write_par(w, np, |k, buf| {
+            push_int(buf, k + 1);
+            buf.push(b'\n');
+        })?;
+        write_ranges(w, np.div_ceil(CHUNK), |c, buf| {
+            mesh.points_in(c * CHUNK..(c + 1) * CHUNK, |_, p| {
+                push_f64(buf, p[0]);
+                buf.push(b' ');
+                push_f64(buf, p[1]);
+                buf.push(b' ');
+                push_f64(buf, p[2]);
+                buf.push(b'\n');
+            })
+        })?;
         writeln!(w, "$EndNodes")?;
         let ncells = mesh.ncells();
         let nfaces: usize = mesh.boundary.iter().map(Vec::len).sum();
@@ -112,36 +121,39 @@ pub fn write_msh(path: &Path, mesh: &Mesh) -> Result<()> {
             ncells + nfaces,
             ncells + nfaces
         )?;
-        let mut tag = 1usize;
+        let chunks = mesh.cell_chunks(CHUNK);
         for (k, b) in mesh.blocks.iter().enumerate() {
             writeln!(w, "{dim} {} {cell_type} {}", k + 1, b.ncells())?;
-            let [ci, cj, ck] = b.cell_dims();
-            for kk in 0..ck {
-                for j in 0..cj {
-                    for i in 0..ci {
-                        write!(w, "{tag}")?;
-                        for v in &b.cell_nodes(i, j, kk)[..nc] {
-                            write!(w, " {}", v + 1)?;
-                        }
-                        writeln!(w)?;
-                        tag += 1;
+            let mine: Vec<&(usize, std::ops::Range<usize>)> =
+                chunks.iter().filter(|c| c.0 == k).collect();
+            let [ci, cj, _] = b.cell_dims();
+            write_ranges(w, mine.len(), |c, buf| {
+                for local in mine[c].1.clone() {
+                    push_int(buf, b.first_cell + local + 1);
+                    let n = b.cell_nodes(local % ci, (local / ci) % cj, local / (ci * cj));
+                    for v in &n[..nc] {
+                        buf.push(b' ');
+                        push_int(buf, v + 1);
                     }
+                    buf.push(b'\n');
                 }
-            }
+            })?;
         }
+        let mut tag = ncells + 1;
         for (k, faces) in mesh.boundary.iter().enumerate() {
             if faces.is_empty() {
                 continue;
             }
             writeln!(w, "{} {} {face_type} {}", dim - 1, k + 1, faces.len())?;
-            for f in faces {
-                write!(w, "{tag}")?;
-                for v in &f.nodes[..nf] {
-                    write!(w, " {}", v + 1)?;
+            write_par(w, faces.len(), |m, buf| {
+                push_int(buf, tag + m);
+                for v in &faces[m].nodes[..nf] {
+                    buf.push(b' ');
+                    push_int(buf, v + 1);
                 }
-                writeln!(w)?;
-                tag += 1;
-            }
+                buf.push(b'\n');
+            })?;
+            tag += faces.len();
         }
         writeln!(w, "$EndElements")
     })
