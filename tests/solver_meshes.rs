@@ -39,6 +39,7 @@ fn two_squares() -> (Vec<(String, Block)>, ConnFile) {
             (2, "wall".into()),
             (3, "outflow".into()),
         ],
+        bcs: vec![],
     };
     (blocks, conn)
 }
@@ -86,6 +87,7 @@ fn o_grid(ni: usize, nj: usize) -> (Vec<(String, Block)>, ConnFile) {
             ((1, [1, nj, 1], [ni, nj, 1]), 2),
         ],
         families: vec![(1, "wall".into()), (2, "farfield".into())],
+        bcs: vec![],
     };
     (vec![("ring".to_string(), Block::Planar(g))], conn)
 }

@@ -51,6 +51,11 @@ pub struct OutputSpec {
     pub multi_block: Option<bool>,
     /// Write planar blocks as 2D Plot3D (x, y only; default true). False writes z = 0, nk = 1.
     pub two_d: Option<bool>,
+    /// Thickness along z of planar grids written as OpenFOAM meshes (extruded one cell
+    /// thick, z from 0 to `span`; default 1).
+    pub span: Option<f64>,
+    /// OpenFOAM meshes in "ascii" (default) or "binary".
+    pub foam_format: Option<String>,
 }
 
 /// `[solver]`: options of the elliptic solve.
@@ -192,6 +197,10 @@ pub struct TopoEdgeSpec {
     pub interface: Option<String>,
     /// Boundary-patch family written to the connectivity file (default: the edge's name).
     pub family: Option<String>,
+    /// Boundary condition of the edge's family in solver meshes: "wall", "symmetry",
+    /// "farfield", "inflow", "outflow" or "general" (default: suggested by the family's
+    /// name). Boundary edges only; every edge of a family gives the same.
+    pub bc: Option<String>,
 }
 
 /// The kind of a block.

@@ -208,6 +208,7 @@ fn run(
         job::output_kind(p)?;
     }
     let fmt = job::plot3d_format(&case)?;
+    let mesh = job::mesh_options(&case)?;
     if let Some(p) = write_start {
         job::output_kind(p)?;
     }
@@ -238,7 +239,7 @@ fn run(
             Some(e) if !allow_folded => return Err(e),
             _ => {}
         }
-        let written = job::write_outputs_with(&g.blocks, g.topology.as_ref(), &paths, &fmt)?;
+        let written = job::write_outputs_with(&g.blocks, g.topology.as_ref(), &paths, &fmt, &mesh)?;
         g.report.outputs = written.iter().map(|p| p.display().to_string()).collect();
         messages.extend(written.iter().map(|p| format!("wrote {}", p.display())));
         Ok(fold)

@@ -1,6 +1,8 @@
 //! SU2 native mesh output (`.su2`): the merged multi-block mesh ([`crate::io::mesh`]) as one
 //! zone of quadrilaterals (2D) or hexahedra (3D), 0-based node numbers, and one `MARKER_TAG`
-//! per family with its boundary lines or quadrilaterals.
+//! per family with its boundary lines or quadrilaterals. SU2 takes boundary conditions from
+//! its configuration file, so each marker's kind (given or by its name) is a comment line
+//! `% marker NAME: KIND` after the first.
 
 use crate::io::mesh::{Cells, Mesh};
 use crate::io::text::{push_f64, push_int, write_par, write_ranges, CHUNK};
@@ -46,6 +48,10 @@ pub fn write_su2(path: &Path, mesh: &Mesh) -> Result<()> {
     };
     write_atomic(path, |w| {
         writeln!(w, "% written by ellipgrid: {} blocks", mesh.blocks.len())?;
+        // SU2 sets boundary conditions in its configuration file: each marker's kind here
+        for (fam, bc) in mesh.families.iter().zip(&mesh.bcs) {
+            writeln!(w, "% marker {}: {}", marker(fam), bc.name())?;
+        }
         writeln!(w, "NDIME= {ndime}")?;
         writeln!(w, "NELEM= {}", mesh.ncells())?;
         let chunks = mesh.cell_chunks(CHUNK);

@@ -201,6 +201,7 @@ pub(super) fn classify(
     let mut family_of: HashMap<[u32; 4], (usize, bool)> = HashMap::new();
     let fams: Vec<(usize, String)> = conn.families.clone();
     mesh.families = fams.iter().map(|f| f.1.clone()).collect();
+    mesh.bcs = fams.iter().map(|f| conn.bc(f.0, &f.1)).collect();
     mesh.boundary = vec![Vec::new(); fams.len()];
     for (n, (r, id)) in conn.patches.iter().enumerate() {
         let what = format!("patch {}", n + 1);

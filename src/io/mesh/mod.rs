@@ -13,15 +13,13 @@ mod faces;
 mod interface;
 mod merge;
 
+pub use crate::io::connectivity::{BcKind, FRONT_AND_BACK};
 pub use faces::{Face, Join};
 pub use interface::{one_to_one, OneToOne};
 
 use crate::io::connectivity::{ConnFile, Range};
 use crate::io::Block;
 use crate::{Error, Result};
-
-/// Family of the two sides of an extruded planar grid.
-pub const FRONT_AND_BACK: &str = "frontAndBack";
 
 /// What the blocks are made of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,6 +87,8 @@ pub struct Mesh<'a> {
     pub joins: Vec<Join>,
     /// Family names; [`Mesh::boundary`] holds each family's faces.
     pub families: Vec<String>,
+    /// Each family's boundary condition (given, or by its name: [`ConnFile::bc`]).
+    pub bcs: Vec<BcKind>,
     pub boundary: Vec<Vec<Face>>,
 }
 
@@ -192,6 +192,7 @@ impl<'a> Mesh<'a> {
             blocks: blocks_out,
             joins: Vec::new(),
             families: Vec::new(),
+            bcs: Vec::new(),
             boundary: Vec::new(),
         };
         faces::classify(place, &mut mesh, &views, blocks, &conn)?;
@@ -395,52 +396,4 @@ pub(crate) fn corners(
         hi[c] = z - 1;
     }
     Ok((b, lo, hi))
-}
-
-/// The kind of boundary condition a family's name suggests, for formats that type their
-/// patches (OpenFOAM's `wall`, CGNS's `BCWall`, …).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BcKind {
-    /// A solid surface: the name holds `wall`, `airfoil`, `wing`, `body`, `fuselage`, `flap`,
-    /// `slat`, `main`, `blade`, `hull`, `pylon` or `nacelle`.
-    Wall,
-    /// The name holds `sym`.
-    Symmetry,
-    /// The name holds `far`.
-    Farfield,
-    /// The name holds `inflow` or `inlet`.
-    Inflow,
-    /// The name holds `outflow` or `outlet`.
-    Outflow,
-    /// The two sides of an extruded planar grid ([`FRONT_AND_BACK`]).
-    Empty,
-    /// Anything else.
-    Other,
-}
-
-impl BcKind {
-    /// The kind a family name suggests (case-insensitive).
-    pub fn of(family: &str) -> BcKind {
-        if family == FRONT_AND_BACK {
-            return BcKind::Empty;
-        }
-        let f = family.to_ascii_lowercase();
-        let has = |words: &[&str]| words.iter().any(|w| f.contains(w));
-        if has(&[
-            "wall", "airfoil", "wing", "body", "fuselage", "flap", "slat", "main", "blade", "hull",
-            "pylon", "nacelle",
-        ]) {
-            BcKind::Wall
-        } else if has(&["sym"]) {
-            BcKind::Symmetry
-        } else if has(&["far"]) {
-            BcKind::Farfield
-        } else if has(&["inflow", "inlet"]) {
-            BcKind::Inflow
-        } else if has(&["outflow", "outlet"]) {
-            BcKind::Outflow
-        } else {
-            BcKind::Other
-        }
-    }
 }
