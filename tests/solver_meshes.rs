@@ -323,7 +323,9 @@ fn c_grid_to_openfoam_su2_and_gmsh_through_the_cli() {
     ] {
         assert!(msh.contains(n), "{n}");
     }
-    assert!(msh.contains("$Nodes\n1 28544 1 28544\n"));
+    // nodes classified by entity: 3 families, then 4 blocks; the closed airfoil's 256 first
+    assert!(msh.contains("$Nodes\n7 28544 1 28544\n1 1 0 256\n"));
+    assert!(msh.contains("\n2 4 0 3713\n"), "block4's own nodes");
 }
 
 #[test]

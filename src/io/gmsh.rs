@@ -2,7 +2,8 @@
 //! entity per block (a surface, or a volume) and one per family (curves, or surfaces), and a
 //! physical group named after each block and each family, so that a solver reading Gmsh
 //! meshes (or Gmsh itself) finds the boundary patches by name. Node tags are the merged node
-//! numbers + 1; every node is listed once, with the first block's entity.
+//! numbers + 1; every node is listed once, classified on the entity it lies on: a family's
+//! (the first family's where two meet), else the block's where it is first met.
 
 use crate::io::mesh::{Cells, Mesh};
 use crate::io::text::{push_f64, push_int, write_par, write_ranges, CHUNK};
@@ -96,21 +97,68 @@ pub fn write_msh(path: &Path, mesh: &Mesh) -> Result<()> {
         blocks(w)?;
         writeln!(w, "$EndEntities")?;
         let np = mesh.npoints();
-        writeln!(w, "$Nodes\n1 {np} 1 {np}\n{dim} 1 0 {np}")?;
-        write_par(w, np, |k, buf| {
-            push_int(buf, k + 1);
+        // Nodes by entity: each family's (those of its faces not on an earlier family),
+        // then each block's (those first met in it, not on a family).
+        let mut claimed = vec![0u64; np.div_ceil(64)];
+        let is_claimed = |c: &[u64], k: usize| c[k / 64] >> (k % 64) & 1 == 1;
+        let mut fam_nodes: Vec<Vec<u32>> = Vec::with_capacity(nfam);
+        for faces in &mesh.boundary {
+            let mut v: Vec<u32> = faces.iter().flat_map(|f| f.nodes[..nf].to_vec()).collect();
+            v.sort_unstable();
+            v.dedup();
+            v.retain(|&k| !is_claimed(&claimed, k as usize));
+            v.iter()
+                .for_each(|&k| claimed[k as usize / 64] |= 1 << (k % 64));
+            fam_nodes.push(v);
+        }
+        let range = |k: usize| {
+            let end = mesh
+                .blocks
+                .get(k + 1)
+                .map_or(np, |b| b.first_point as usize);
+            mesh.blocks[k].first_point as usize..end
+        };
+        let block_count: Vec<usize> = (0..nb)
+            .map(|k| range(k).filter(|&n| !is_claimed(&claimed, n)).count())
+            .collect();
+        let nentities = fam_nodes.iter().filter(|v| !v.is_empty()).count()
+            + block_count.iter().filter(|&&n| n > 0).count();
+        writeln!(w, "$Nodes\n{nentities} {np} 1 {np}")?;
+        let point = |buf: &mut Vec<u8>, p: [f64; 3]| {
+            push_f64(buf, p[0]);
+            buf.push(b' ');
+            push_f64(buf, p[1]);
+            buf.push(b' ');
+            push_f64(buf, p[2]);
             buf.push(b'\n');
-        })?;
-        write_ranges(w, np.div_ceil(CHUNK), |c, buf| {
-            mesh.points_in(c * CHUNK..(c + 1) * CHUNK, |_, p| {
-                push_f64(buf, p[0]);
-                buf.push(b' ');
-                push_f64(buf, p[1]);
-                buf.push(b' ');
-                push_f64(buf, p[2]);
+        };
+        for (k, v) in fam_nodes.iter().enumerate().filter(|(_, v)| !v.is_empty()) {
+            writeln!(w, "{} {} 0 {}", dim - 1, k + 1, v.len())?;
+            write_par(w, v.len(), |m, buf| {
+                push_int(buf, v[m] + 1);
                 buf.push(b'\n');
-            })
-        })?;
+            })?;
+            write_par(w, v.len(), |m, buf| point(buf, mesh.point(v[m])))?;
+        }
+        for k in (0..nb).filter(|&k| block_count[k] > 0) {
+            writeln!(w, "{dim} {} 0 {}", k + 1, block_count[k])?;
+            let r = range(k);
+            let pieces = r.len().div_ceil(CHUNK);
+            let piece = |c: usize| r.start + c * CHUNK..(r.start + (c + 1) * CHUNK).min(r.end);
+            write_ranges(w, pieces, |c, buf| {
+                for n in piece(c).filter(|&n| !is_claimed(&claimed, n)) {
+                    push_int(buf, n + 1);
+                    buf.push(b'\n');
+                }
+            })?;
+            write_ranges(w, pieces, |c, buf| {
+                mesh.points_in(piece(c), |n, p| {
+                    if !is_claimed(&claimed, n) {
+                        point(buf, p);
+                    }
+                })
+            })?;
+        }
         writeln!(w, "$EndNodes")?;
         let ncells = mesh.ncells();
         let nfaces: usize = mesh.boundary.iter().map(Vec::len).sum();
