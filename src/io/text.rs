@@ -171,7 +171,7 @@ pub fn write_par(
 }
 
 /// Writes `nchunks` pieces of text, piece c appended by `f(c, buf)`: formatted in parallel
-/// ([`BATCH`] at a time), written in order.
+/// (16 at a time), written in order.
 ///
 /// # Errors
 /// The writer's.
