@@ -3,11 +3,12 @@
 
 Usage: check_meshes.py ELLIPGRID WORK GRID.x[:CONN] ...
 
-For every grid (with its .conn, if any) it writes an OpenFOAM polyMesh, an SU2 mesh and a
-Gmsh MSH 4.1 file with `ellipgrid convert`, then
+For every grid (with its .conn, if any) it writes an OpenFOAM polyMesh (ASCII and binary), an
+SU2 mesh and a Gmsh MSH 4.1 file with `ellipgrid convert`, then
   - runs OpenFOAM's checkMesh: every topology check must pass, and the mesh must be
     "Mesh OK." or fail only the high-aspect-ratio check (Navier-Stokes grids with wall
     spacings of 1e-5 chord have in-plane aspect ratios of thousands by design; reported);
+    the binary polyMesh must give checkMesh the same cells, points, patches and verdict;
   - reads the SU2 and Gmsh files with meshio, and the Gmsh file with the gmsh package: the
     same number of nodes and cells as the polyMesh (the 2D ones: half its points), every
     family a named marker / physical group with the same number of boundary faces as the
@@ -182,6 +183,16 @@ def main():
             continue
         case_dir(case)
         problems, cells, points, patches, verdict = check_mesh(case, name)
+        # The same mesh in OpenFOAM's binary format: checkMesh must see the same mesh.
+        bcase = os.path.join(work, name + "_foam_binary")
+        subprocess.run([exe, "convert", "-q", grid, os.path.join(bcase, "constant", "polyMesh"),
+                        "--foam-format", "binary"] + extra, check=True)
+        case_dir(bcase)
+        bproblems, bcells, bpoints, bpatches, bverdict = check_mesh(bcase, name)
+        problems += ["binary: " + p for p in bproblems]
+        if (bcells, bpoints, bpatches, bverdict) != (cells, points, patches, verdict):
+            problems.append(f"binary polyMesh differs: {bcells} cells, {bpoints} points, "
+                            f"{bpatches}, {bverdict}")
         su2 = os.path.join(work, name + ".su2")
         subprocess.run([exe, "convert", "-q", grid, su2] + extra, check=True)
         s = meshio.read(su2)
@@ -212,7 +223,7 @@ def main():
         problems += cgns_problems
         status = "ok" if not problems else "FAILED"
         print(f"{name}: {status}: {cells} cells, {points} points, {len(patches)} patches; "
-              f"checkMesh: {verdict}; CGNS: {nzones} zones, {n1to1} 1to1 (cgnscheck clean, "
+              f"checkMesh: {verdict} (ASCII and binary); CGNS: {nzones} zones, {n1to1} 1to1 (cgnscheck clean, "
               f"donors coincide)")
         for p in problems:
             print("   ", p)

@@ -1,7 +1,8 @@
 //! Benchmark of the grid writers (#19, item 5): one warped volume block of n³ nodes (default
-//! 216³ ≈ 10 M) written as Plot3D (unformatted double), OpenFOAM polyMesh, SU2, Gmsh MSH 4.1
-//! and, with the `cgns` feature, CGNS; seconds and MB/s per format, and the peak resident
-//! memory (VmHWM) after each against the grid's own size.
+//! 216³ ≈ 10 M) written as Plot3D (unformatted double), OpenFOAM polyMesh (ASCII and binary),
+//! SU2, Gmsh MSH 4.1 and, with the `cgns` feature, CGNS; wall seconds, CPU seconds of the
+//! process (all threads: the work, whatever else runs on the machine) and MB/s per format, and
+//! the peak resident memory (VmHWM) after each against the grid's own size.
 //!
 //! `cargo run --release --example bench_formats [--features cgns] -- [n] [--dir DIR]`
 
@@ -23,6 +24,17 @@ fn peak_mb() -> f64 {
             })
         })
         .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+/// User + system CPU seconds of this process so far (all threads).
+fn cpu_s() -> f64 {
+    // SAFETY: getrusage writes into the zeroed struct it is given.
+    let mut u: libc::rusage = unsafe { std::mem::zeroed() };
+    if unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut u) } != 0 {
+        return f64::NAN;
+    }
+    let t = |v: libc::timeval| v.tv_sec as f64 + v.tv_usec as f64 * 1e-6;
+    t(u.ru_utime) + t(u.ru_stime)
 }
 
 fn size_mb(p: &Path) -> f64 {
@@ -64,12 +76,12 @@ fn main() -> ellipgrid::Result<()> {
     );
     let conn = sides_as_patches(&blocks);
     let time = |name: &str, path: &Path, f: &dyn Fn() -> ellipgrid::Result<()>| {
-        let t = Instant::now();
+        let (t, c) = (Instant::now(), cpu_s());
         let r = f();
-        let s = t.elapsed().as_secs_f64();
+        let (s, cpu) = (t.elapsed().as_secs_f64(), cpu_s() - c);
         let mb = size_mb(path);
         println!(
-            "{name:<10} {s:7.2} s  {mb:8.0} MB  {:6.0} MB/s  peak {:.0} MB",
+            "{name:<15} {s:6.2} s  cpu {cpu:6.2} s  {mb:6.0} MB  {:5.0} MB/s  peak {:.0} MB",
             mb / s,
             peak_mb()
         );
@@ -77,17 +89,23 @@ fn main() -> ellipgrid::Result<()> {
     };
     let p = dir.join("grid.x");
     time("plot3d", &p, &|| {
-        write_plot3d(&p, &[blocks[0].1.clone()], &Plot3dFormat::default(), None)
+        write_plot3d(&p, &[&blocks[0].1], &Plot3dFormat::default(), None)
     })?;
-    let t = Instant::now();
+    let (t, c) = (Instant::now(), cpu_s());
     let mesh = Mesh::build("bench", &blocks, &conn, None)?;
     println!(
-        "merge      {:7.2} s  (io::mesh::Mesh::build)  peak {:.0} MB",
+        "{:<15} {:6.2} s  cpu {:6.2} s  (io::mesh::Mesh::build)  peak {:.0} MB",
+        "merge",
         t.elapsed().as_secs_f64(),
+        cpu_s() - c,
         peak_mb()
     );
     let p = dir.join("constant/polyMesh");
     time("openfoam", &p, &|| foam::write_polymesh(&p, &mesh))?;
+    let p = dir.join("binary/polyMesh");
+    time("openfoam binary", &p, &|| {
+        foam::write_polymesh_as(&p, &mesh, true)
+    })?;
     let p = dir.join("grid.su2");
     time("su2", &p, &|| su2::write_su2(&p, &mesh))?;
     let p = dir.join("grid.msh");

@@ -165,3 +165,60 @@ fn unreadable_cgns_is_a_clear_error() {
     assert!(t.contains("junk.cgns") && !t.contains("panicked"), "{t}");
     assert!(!d.path().join("out.x").exists());
 }
+
+#[test]
+fn smooth_reads_cgns_and_keeps_names_connectivity_and_boundary_nodes() {
+    // The NACA 0012 O-grid's four blocks as CGNS; smooth regrids their interiors from the
+    // transfinite start the Plot3D would give: boundary nodes bit for bit, the connectivity
+    // and the block names carried to the CGNS output, the solver mesh from it merges.
+    let d = tempfile::tempdir().unwrap();
+    let case = root().join("examples/naca0012_ogrid.toml");
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "run",
+            "-q",
+            case.to_str().unwrap(),
+            "-o",
+            "o.conn",
+            "--write-start",
+            "s.x",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let o = ellipgrid(
+        d.path(),
+        &["convert", "-q", "s.x", "s.cgns", "--conn", "o.conn"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "smooth", "-q", "s.cgns", "-o", "out.cgns", "-o", "out.x", "-o", "out.su2",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let (start, conn) = read_cgns(&d.path().join("s.cgns")).unwrap();
+    let (out, conn_out) = read_cgns(&d.path().join("out.cgns")).unwrap();
+    assert_eq!(sorted(conn_out), sorted(conn));
+    let names = |b: &[(String, Block)]| b.iter().map(|x| x.0.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&out), names(&start));
+    for ((_, a), (_, b)) in start.iter().zip(&out) {
+        let (Block::Planar(a), Block::Planar(b)) = (a, b) else {
+            panic!("planar blocks")
+        };
+        let (ni, nj) = (a.ni(), a.nj());
+        for j in 0..nj {
+            for i in 0..ni {
+                if i == 0 || j == 0 || i == ni - 1 || j == nj - 1 {
+                    assert_eq!(a.point(i, j), b.point(i, j), "boundary node ({i}, {j})");
+                }
+            }
+        }
+        assert_ne!(a, b, "the interior was regridded");
+    }
+    let plot3d = ellipgrid::io::plot3d::read_plot3d(&d.path().join("out.x")).unwrap();
+    assert_eq!(plot3d.blocks.len(), 4);
+    let su2 = std::fs::read_to_string(d.path().join("out.su2")).unwrap();
+    assert!(su2.contains("MARKER_TAG= airfoil\n"), "families kept");
+}

@@ -39,6 +39,7 @@ fn two_squares() -> (Vec<(String, Block)>, ConnFile) {
             (2, "wall".into()),
             (3, "outflow".into()),
         ],
+        bcs: vec![],
     };
     (blocks, conn)
 }
@@ -47,7 +48,7 @@ fn two_squares() -> (Vec<(String, Block)>, ConnFile) {
 fn two_blocks_sharing_an_edge_merge_into_one_mesh() {
     let (blocks, conn) = two_squares();
     let m = Mesh::build("t", &blocks, &conn, None).unwrap();
-    assert_eq!(m.points.len(), 15, "3 × 5 distinct nodes");
+    assert_eq!(m.npoints(), 15, "3 × 5 distinct nodes");
     assert_eq!(m.ncells(), 8);
     assert_eq!(m.joins.len(), 2, "two cell faces on the shared edge");
     assert_eq!(m.ninternal_faces(), 2 * 4 + 2);
@@ -58,12 +59,12 @@ fn two_blocks_sharing_an_edge_merge_into_one_mesh() {
     for j in &m.joins {
         assert!(j.owner < 4 && j.neighbour >= 4, "{j:?}");
         for n in &j.nodes[..2] {
-            assert_eq!(m.points[*n as usize][0], 1.0);
+            assert_eq!(m.point(*n)[0], 1.0);
         }
     }
     // Extruded one cell thick: twice the nodes, hexahedra, front and back as one family.
     let m = Mesh::build("t", &blocks, &conn, Some(0.5)).unwrap();
-    assert_eq!(m.points.len(), 30);
+    assert_eq!(m.npoints(), 30);
     assert_eq!(m.ninternal_faces(), 10);
     assert_eq!(m.families.last().unwrap(), "frontAndBack");
     assert_eq!(m.boundary.last().unwrap().len(), 16);
@@ -86,6 +87,7 @@ fn o_grid(ni: usize, nj: usize) -> (Vec<(String, Block)>, ConnFile) {
             ((1, [1, nj, 1], [ni, nj, 1]), 2),
         ],
         families: vec![(1, "wall".into()), (2, "farfield".into())],
+        bcs: vec![],
     };
     (vec![("ring".to_string(), Block::Planar(g))], conn)
 }
@@ -94,7 +96,7 @@ fn o_grid(ni: usize, nj: usize) -> (Vec<(String, Block)>, ConnFile) {
 fn a_periodic_cut_joins_a_block_to_itself_and_left_handed_cells_are_turned() {
     let (blocks, conn) = o_grid(17, 5);
     let m = Mesh::build("t", &blocks, &conn, None).unwrap();
-    assert_eq!(m.points.len(), 16 * 5);
+    assert_eq!(m.npoints(), 16 * 5);
     assert_eq!(m.joins.len(), 4, "one face per cell row across the cut");
     assert!(
         m.blocks[0].flip,
@@ -104,7 +106,7 @@ fn a_periodic_cut_joins_a_block_to_itself_and_left_handed_cells_are_turned() {
         for j in 0..b.cell_dims()[1] {
             for i in 0..b.cell_dims()[0] {
                 let n = b.cell_nodes(i, j, 0);
-                let p: Vec<[f64; 3]> = n[..4].iter().map(|&k| m.points[k as usize]).collect();
+                let p: Vec<[f64; 3]> = n[..4].iter().map(|&k| m.point(k)).collect();
                 let area: f64 = (0..4)
                     .map(|k| {
                         let (a, c) = (p[k], p[(k + 1) % 4]);
@@ -117,7 +119,7 @@ fn a_periodic_cut_joins_a_block_to_itself_and_left_handed_cells_are_turned() {
     }
     // Boundary faces run with the domain on their left: the wall (inner circle) clockwise.
     let w = m.boundary[0][0].nodes;
-    let (a, b) = (m.points[w[0] as usize], m.points[w[1] as usize]);
+    let (a, b) = (m.point(w[0]), m.point(w[1]));
     assert!(a[0] * b[1] - a[1] * b[0] < 0.0, "wall face runs clockwise");
 }
 
@@ -321,7 +323,9 @@ fn c_grid_to_openfoam_su2_and_gmsh_through_the_cli() {
     ] {
         assert!(msh.contains(n), "{n}");
     }
-    assert!(msh.contains("$Nodes\n1 28544 1 28544\n"));
+    // nodes classified by entity: 3 families, then 4 blocks; the closed airfoil's 256 first
+    assert!(msh.contains("$Nodes\n7 28544 1 28544\n1 1 0 256\n"));
+    assert!(msh.contains("\n2 4 0 3713\n"), "block4's own nodes");
 }
 
 #[test]

@@ -267,7 +267,7 @@ fn cli_export_then_grid_round_trip() {
     let netx = dir.path().join("net.x");
     ellipgrid::io::plot3d::write_plot3d(
         &netx,
-        &[g.into()],
+        &[ellipgrid::io::Block::from(g)],
         &ellipgrid::io::plot3d::Plot3dFormat::default(),
         None,
     )

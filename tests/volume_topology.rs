@@ -327,6 +327,15 @@ fn volume_topology_errors_exit_2_naming_volume_face_and_edge() {
         &good.replacen("n = 3\n", "n = 3\northogonal = true\n", 1),
         &["edge 'ex000'", "orthogonal"],
     );
+    // A boundary condition on a face between two volumes, and an unknown one.
+    rejects(
+        &good.replacen("name = \"fx100\"\n", "name = \"fx100\"\nbc = \"wall\"\n", 1),
+        &["face 'fx100'", "between two volumes"],
+    );
+    rejects(
+        &good.replacen("name = \"fx000\"\n", "name = \"fx000\"\nbc = \"slip\"\n", 1),
+        &["face 'fx000'", "bc = 'slip'"],
+    );
     // A surface face without a surface.
     rejects(
         &good.replacen("kind = \"tfi\"", "kind = \"surface\"", 1),

@@ -57,6 +57,11 @@ pub struct OutputSpec {
     pub multi_block: Option<bool>,
     /// Write planar blocks as 2D Plot3D (x, y only; default true). False writes z = 0, nk = 1.
     pub two_d: Option<bool>,
+    /// Thickness along z of planar grids written as OpenFOAM meshes (extruded one cell
+    /// thick, z from 0 to `span`; default 1).
+    pub span: Option<f64>,
+    /// OpenFOAM meshes in "ascii" (default) or "binary".
+    pub foam_format: Option<String>,
 }
 
 /// `[solver]`: options of the elliptic solve.
@@ -198,6 +203,10 @@ pub struct TopoEdgeSpec {
     pub interface: Option<String>,
     /// Boundary-patch family written to the connectivity file (default: the edge's name).
     pub family: Option<String>,
+    /// Boundary condition of the edge's family in solver meshes: "wall", "symmetry",
+    /// "farfield", "inflow", "outflow" or "general" (default: suggested by the family's
+    /// name). Boundary edges only; every edge of a family gives the same.
+    pub bc: Option<String>,
 }
 
 /// `[[face]]`: a named face of a volume topology, bounded by four sides of named edges (as
@@ -219,6 +228,10 @@ pub struct FaceSpec {
     pub orthogonal: Vec<String>,
     /// Boundary-patch family in the connectivity file (default: the face's name).
     pub family: Option<String>,
+    /// The family's boundary condition in solver meshes ("wall", "symmetry", "farfield",
+    /// "inflow", "outflow", "general"; default: guessed from the family name). Boundary
+    /// faces only.
+    pub bc: Option<String>,
     #[serde(rename = "E1")]
     pub e1: Option<SideSpec>,
     #[serde(rename = "E2")]

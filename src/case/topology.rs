@@ -45,6 +45,7 @@ pub(super) fn build(case: &Case, place: &str) -> Result<Option<Topology>> {
         });
     }
     let mut topo = Topology::new(vertices, edges, &blocks, place)?;
+    check_bcs(&topo, place)?;
     // Edge flags: a side is orthogonal if all its edges are; mixed chains are errors.
     for b in 0..topo.blocks.len() {
         for e in Edge::ALL {
@@ -113,6 +114,7 @@ pub(super) fn topo_edges(case: &Case, place: &str) -> Result<(Vec<String>, Vec<T
             orthogonal: e.orthogonal,
             floating,
             family: e.family.clone().unwrap_or_else(|| e.name.clone()),
+            bc: e.bc.clone(),
         });
     }
     Ok((vertices, edges))
@@ -344,4 +346,43 @@ impl Curve for Trimmed<'_> {
         b.sort_by(f64::total_cmp);
         b
     }
+}
+
+/// Checks the edges' `bc` keys: a known kind, on boundary edges only, one per family.
+fn check_bcs(topo: &Topology, place: &str) -> Result<()> {
+    use crate::io::connectivity::{BcKind, BC_NAMES};
+    let c = topo.connectivity();
+    for (k, e) in topo.edges.iter().enumerate() {
+        let Some(bc) = &e.bc else { continue };
+        let at = format!("{place}: edge '{}'", e.name);
+        if BcKind::parse(bc).is_none() {
+            return Err(Error::input(
+                at,
+                format!("bc = '{bc}': expected one of {}", BC_NAMES.join(", ")),
+            ));
+        }
+        if c.interfaces.iter().any(|f| f.edge == k) {
+            return Err(Error::input(
+                at,
+                "bc = … on an edge between two blocks: boundary conditions belong to boundary \
+                 edges",
+            ));
+        }
+        let other = topo
+            .edges
+            .iter()
+            .find(|o| o.family == e.family && o.bc.as_ref().is_some_and(|b| b != bc));
+        if let Some(o) = other {
+            return Err(Error::input(
+                at,
+                format!(
+                    "bc = '{bc}' but edge '{}' of the same family '{}' has bc = '{}'",
+                    o.name,
+                    e.family,
+                    o.bc.as_deref().unwrap_or_default()
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

@@ -64,11 +64,11 @@ pub(super) fn build3(case: &Case, place: &str) -> Result<Option<Topology3>> {
                  face (orthogonal = [\"E3\"] in its [[face]] table)",
             ));
         }
-        if spec.family.is_some() {
+        if spec.family.is_some() || spec.bc.is_some() {
             return Err(Error::input(
                 at,
-                "in a volume topology the boundary patches are faces: give `family` on the \
-                 [[face]]",
+                "in a volume topology the boundary patches are faces: give `family` and `bc` \
+                 on the [[face]]",
             ));
         }
     }
@@ -109,7 +109,9 @@ pub(super) fn build3(case: &Case, place: &str) -> Result<Option<Topology3>> {
             faces,
         });
     }
-    let topo = Topology3::new(faces, families, &volumes, place)?;
+    let bcs = case.faces.iter().map(|f| f.bc.clone()).collect();
+    let topo = Topology3::new(faces, families, bcs, &volumes, place)?;
+    check_bcs(&topo, place)?;
     for (k, v) in case.volumes.iter().enumerate() {
         let dims = topo.volumes[k].dims;
         for (given, n, what) in [
@@ -129,6 +131,43 @@ pub(super) fn build3(case: &Case, place: &str) -> Result<Option<Topology3>> {
         }
     }
     Ok(Some(topo))
+}
+
+/// Checks the faces' `bc` keys: a known kind, on boundary faces only, one per family.
+fn check_bcs(topo: &Topology3, place: &str) -> Result<()> {
+    use crate::io::connectivity::{BcKind, BC_NAMES};
+    for (f, bc) in topo.bcs.iter().enumerate() {
+        let Some(bc) = bc else { continue };
+        let at = format!("{place}: face '{}'", topo.faces.blocks[f].name);
+        if BcKind::parse(bc).is_none() {
+            return Err(Error::input(
+                at,
+                format!("bc = '{bc}': expected one of {}", BC_NAMES.join(", ")),
+            ));
+        }
+        if topo.uses_of(f).len() == 2 {
+            return Err(Error::input(
+                at,
+                "bc = … on a face between two volumes: boundary conditions belong to boundary \
+                 faces",
+            ));
+        }
+        let other = (0..topo.bcs.len()).find(|&o| {
+            topo.families[o] == topo.families[f] && topo.bcs[o].as_ref().is_some_and(|b| b != bc)
+        });
+        if let Some(o) = other {
+            return Err(Error::input(
+                at,
+                format!(
+                    "bc = '{bc}' but face '{}' of the same family '{}' has bc = '{}'",
+                    topo.faces.blocks[o].name,
+                    topo.families[f],
+                    topo.bcs[o].as_deref().unwrap_or_default()
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn volume_name(case: &Case, k: usize) -> String {

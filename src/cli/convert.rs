@@ -64,6 +64,13 @@ pub struct ConvertArgs {
     /// name with `.conn` if that file exists; without one, every block side is its own patch.
     #[arg(long, value_name = "FILE")]
     conn: Option<PathBuf>,
+    /// OpenFOAM output of a planar grid: the thickness along z of the one cell it is
+    /// extruded by (z from 0 to SPAN). Default: 1.
+    #[arg(long, value_name = "SPAN")]
+    span: Option<f64>,
+    /// OpenFOAM output: "ascii" (default) or "binary" (raw numbers: smaller, faster).
+    #[arg(long, value_name = "F")]
+    foam_format: Option<String>,
     /// Print only errors.
     #[arg(short, long)]
     quiet: bool,
@@ -192,6 +199,20 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
             "--color colours glTF output (.glb, .gltf); pictures: ellipgrid plot --color",
         ));
     }
+    if (a.span.is_some() || a.foam_format.is_some()) && kind != OutputKind::Foam {
+        return Err(Error::input(
+            a.output.display().to_string(),
+            "--span and --foam-format are options of OpenFOAM meshes (a directory named \
+             polyMesh)",
+        ));
+    }
+    let mut mesh = match a.span {
+        Some(s) => job::MeshOptions::with_span(s, "--span")?,
+        None => job::MeshOptions::default(),
+    };
+    if let Some(f) = &a.foam_format {
+        mesh = mesh.with_foam_format(f, "--foam-format")?;
+    }
     let options = plot3d_options_given(a);
     if options && kind != OutputKind::Plot3d {
         return Err(Error::input(
@@ -215,7 +236,7 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
             if fmt.is_none() && blocks.len() > 1 {
                 f.multi_block = true;
             }
-            let only: Vec<Block> = blocks.iter().map(|(_, b)| b.clone()).collect();
+            let only: Vec<&Block> = blocks.iter().map(|(_, b)| b).collect();
             let ib = if f.iblank {
                 input.iblank.as_deref()
             } else {
@@ -242,7 +263,7 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
                 ellipgrid::io::connectivity::write_file(&a.output, &conn)?;
                 vec![a.output.clone()]
             } else {
-                ellipgrid::io::staged(|| job::write_mesh(&a.output, kind, blocks, &conn))?
+                ellipgrid::io::staged(|| job::write_mesh(&a.output, kind, blocks, &conn, &mesh))?
             }
         }
         _ => {

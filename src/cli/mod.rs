@@ -56,9 +56,11 @@ enum Command {
     /// curved surface blocks by the minimal-surface system of Section 3. Unselected blocks pass
     /// through unchanged; the output has the input's Plot3D flavour.
     Smooth {
-        /// The input grid (Plot3D, any flavour).
+        /// The input grid (Plot3D, any flavour; or CGNS with the cgns feature, whose block
+        /// names and connectivity the outputs keep).
         input: PathBuf,
-        /// The output grid (.x/.xyz/.p3d/.g Plot3D in the input's flavour, or .vts/.vtm).
+        /// The output grid (.x/.xyz/.p3d/.g Plot3D in the input's flavour, or .vts/.vtm, or
+        /// any other output format).
         #[arg(short, long = "output", value_name = "OUT", required = true)]
         output: Vec<PathBuf>,
         /// Regrid only these blocks (1-based, comma separated), e.g. `--blocks 1,3`.
@@ -208,6 +210,7 @@ fn run(
         job::output_kind(p)?;
     }
     let fmt = job::plot3d_format(&case)?;
+    let mesh = job::mesh_options(&case)?;
     if let Some(p) = write_start {
         job::output_kind(p)?;
     }
@@ -240,7 +243,8 @@ fn run(
             Some(e) if !allow_folded => return Err(e),
             _ => {}
         }
-        let written = job::write_outputs_with(&g.blocks, g.connectivity.as_ref(), &paths, &fmt)?;
+        let written =
+            job::write_outputs_with(&g.blocks, g.connectivity.as_ref(), &paths, &fmt, &mesh)?;
         g.report.outputs = written.iter().map(|p| p.display().to_string()).collect();
         messages.extend(written.iter().map(|p| format!("wrote {}", p.display())));
         Ok(fold)
@@ -275,7 +279,32 @@ fn smooth(
     for p in output {
         job::output_kind(p)?;
     }
-    let file = plot3d::read_plot3d(input)?;
+    // A CGNS input (the cgns feature) keeps its block names and connectivity for the
+    // outputs: smoothing moves no boundary node, so the interfaces still match.
+    let (file, names, conn) = if input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("cgns"))
+    {
+        let l = convert::load(input, true, true)?;
+        let (names, blocks): (Vec<String>, Vec<Block>) = l.blocks.into_iter().unzip();
+        let format = plot3d::Plot3dFormat {
+            multi_block: true,
+            two_d: blocks.iter().all(|b| matches!(b, Block::Planar(_))),
+            ..plot3d::Plot3dFormat::default()
+        };
+        let file = plot3d::Plot3dFile {
+            blocks,
+            format,
+            iblank: None,
+        };
+        (file, names, l.conn)
+    } else {
+        let file = plot3d::read_plot3d(input)?;
+        let names = (1..=file.blocks.len())
+            .map(|k| format!("block{k}"))
+            .collect();
+        (file, names, None)
+    };
     let name = input.display().to_string();
     let (blocks, reports) = smooth_blocks(&file.blocks, &name, opts)?;
     if !quiet {
@@ -299,16 +328,30 @@ fn smooth(
                 plot3d::write_plot3d(p, &blocks, &file.format, ib)?;
                 written.push(p.clone());
             } else {
-                let named: Vec<(String, Block)> = blocks
-                    .iter()
-                    .enumerate()
-                    .map(|(k, b)| (format!("block{}", k + 1), b.clone()))
-                    .collect();
-                written.extend(job::write_outputs(
-                    &named,
-                    std::slice::from_ref(p),
-                    &file.format,
-                )?);
+                let named: Vec<(String, Block)> =
+                    names.iter().cloned().zip(blocks.iter().cloned()).collect();
+                let kind = job::output_kind(p)?;
+                let mesh = matches!(
+                    kind,
+                    job::OutputKind::Foam
+                        | job::OutputKind::Su2
+                        | job::OutputKind::Msh
+                        | job::OutputKind::Cgns
+                );
+                match &conn {
+                    Some(c) if mesh => written.extend(job::write_mesh(
+                        p,
+                        kind,
+                        &named,
+                        c,
+                        &job::MeshOptions::default(),
+                    )?),
+                    _ => written.extend(job::write_outputs(
+                        &named,
+                        std::slice::from_ref(p),
+                        &file.format,
+                    )?),
+                }
             }
         }
         if !quiet {

@@ -9,6 +9,9 @@
 //!   1    1  1  1   17  1  1   1   block, first node, last node, family id
 //! 2                          families, one line each:
 //!   1 wall                     family id and name (from the case file)
+//! 1                          optional: boundary conditions given explicitly (`bc =`)
+//!   1 wall                     family id and kind (wall, symmetry, farfield, inflow,
+//!                              outflow, general); other families: by their names
 //! ```
 //! Indices are 1-based and k is 1 for 2D blocks. Side a runs with growing indices; side b's
 //! range runs from the node that matches a's first node to the one that matches its last, so a
@@ -31,6 +34,19 @@ pub struct ConnFile {
     pub patches: Vec<(Range, usize)>,
     /// Family ids and names.
     pub families: Vec<(usize, String)>,
+    /// Boundary conditions given explicitly, by family id; other families get the one
+    /// their name suggests ([`BcKind::of`]).
+    pub bcs: Vec<(usize, BcKind)>,
+}
+
+impl ConnFile {
+    /// The boundary condition of family `id` (named `name`): explicit, else by its name.
+    pub fn bc(&self, id: usize, name: &str) -> BcKind {
+        self.bcs
+            .iter()
+            .find(|b| b.0 == id)
+            .map_or_else(|| BcKind::of(name), |b| b.1)
+    }
 }
 
 /// One side range: 1-based block, first node, last node.
@@ -73,6 +89,17 @@ pub fn from_topology(topo: &Topology) -> ConnFile {
         .enumerate()
         .map(|(k, f)| (k + 1, f))
         .collect();
+    // explicit boundary conditions (one per family: the case checked it)
+    for (id, fam) in &out.families {
+        let given = c
+            .patches
+            .iter()
+            .filter(|p| &p.family == fam)
+            .find_map(|p| topo.edges[p.edge].bc.as_deref().and_then(BcKind::parse));
+        if let Some(kind) = given {
+            out.bcs.push((*id, kind));
+        }
+    }
     out
 }
 
@@ -124,6 +151,17 @@ pub fn from_topology3(topo: &Topology3) -> ConnFile {
         .enumerate()
         .map(|(k, f)| (k + 1, f))
         .collect();
+    // explicit boundary conditions (one per family: the case checked it)
+    for (id, fam) in &out.families {
+        let given = c
+            .patches
+            .iter()
+            .filter(|p| &p.family == fam)
+            .find_map(|p| topo.bcs[p.face].as_deref().and_then(BcKind::parse));
+        if let Some(kind) = given {
+            out.bcs.push((*id, kind));
+        }
+    }
     out
 }
 
@@ -148,6 +186,12 @@ pub fn write_file(path: &Path, c: &ConnFile) -> Result<()> {
         writeln!(w, "{}", c.families.len())?;
         for (k, f) in &c.families {
             writeln!(w, "{k:4} {f}")?;
+        }
+        if !c.bcs.is_empty() {
+            writeln!(w, "{}", c.bcs.len())?;
+            for (k, bc) in &c.bcs {
+                writeln!(w, "{k:4} {}", bc.name())?;
+            }
         }
         Ok(())
     })
@@ -205,5 +249,123 @@ pub fn read(path: &Path) -> Result<ConnFile> {
             .ok_or_else(|| bad(k, "a family line starts with its id"))?;
         c.families.push((id, it.collect::<Vec<_>>().join(" ")));
     }
+    // optional: boundary conditions given explicitly, "family-id kind" per line
+    if let Some((k, l)) = lines.next() {
+        let n: usize = l
+            .trim()
+            .parse()
+            .map_err(|_| bad(k, "after the families: the count of boundary conditions"))?;
+        for _ in 0..n {
+            let (k, l) = lines
+                .next()
+                .ok_or_else(|| bad(usize::MAX - 1, "ends before a boundary condition"))?;
+            let v: Vec<&str> = l.split_whitespace().collect();
+            let id = v.first().and_then(|s| s.parse::<usize>().ok());
+            let kind = v.get(1).and_then(|s| BcKind::parse(s));
+            match (id, kind, v.len()) {
+                (Some(id), Some(kind), 2) if c.families.iter().any(|f| f.0 == id) => {
+                    c.bcs.push((id, kind))
+                }
+                (Some(id), Some(_), 2) => {
+                    return Err(bad(
+                        k,
+                        &format!("boundary condition of family {id}, which is not listed"),
+                    ))
+                }
+                _ => {
+                    return Err(bad(
+                        k,
+                        &format!(
+                            "a boundary condition line is a family id and one of {}",
+                            BC_NAMES.join(", ")
+                        ),
+                    ))
+                }
+            }
+        }
+    }
     Ok(c)
+}
+
+/// Family of the two sides of an extruded planar grid.
+pub const FRONT_AND_BACK: &str = "frontAndBack";
+
+/// The kind of boundary condition of a family, for formats that type their patches
+/// (OpenFOAM's `wall`, CGNS's `BCWall`, …): given in the case file (`bc = "wall"` on an
+/// edge) or suggested by the family's name ([`BcKind::of`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BcKind {
+    /// A solid surface: the name holds `wall`, `airfoil`, `wing`, `body`, `fuselage`, `flap`,
+    /// `slat`, `main`, `blade`, `hull`, `pylon` or `nacelle`.
+    Wall,
+    /// The name holds `sym`.
+    Symmetry,
+    /// The name holds `far`.
+    Farfield,
+    /// The name holds `inflow` or `inlet`.
+    Inflow,
+    /// The name holds `outflow` or `outlet`.
+    Outflow,
+    /// The two sides of an extruded planar grid ([`FRONT_AND_BACK`]).
+    Empty,
+    /// Anything else (`bc = "general"`).
+    Other,
+}
+
+/// The names `bc =` takes, in the order of [`BcKind::NAMED`].
+pub const BC_NAMES: [&str; 6] = [
+    "wall", "symmetry", "farfield", "inflow", "outflow", "general",
+];
+
+impl BcKind {
+    /// The kinds a case file or `.conn` file can name.
+    pub const NAMED: [BcKind; 6] = [
+        BcKind::Wall,
+        BcKind::Symmetry,
+        BcKind::Farfield,
+        BcKind::Inflow,
+        BcKind::Outflow,
+        BcKind::Other,
+    ];
+
+    /// The kind named `s` (one of [`BC_NAMES`]).
+    pub fn parse(s: &str) -> Option<BcKind> {
+        BC_NAMES
+            .iter()
+            .position(|n| *n == s)
+            .map(|k| BcKind::NAMED[k])
+    }
+
+    /// The name [`BcKind::parse`] reads (`empty` for the extrusion's sides).
+    pub fn name(self) -> &'static str {
+        match BcKind::NAMED.iter().position(|k| *k == self) {
+            Some(k) => BC_NAMES[k],
+            None => "empty",
+        }
+    }
+
+    /// The kind a family name suggests (case-insensitive).
+    pub fn of(family: &str) -> BcKind {
+        if family == FRONT_AND_BACK {
+            return BcKind::Empty;
+        }
+        let f = family.to_ascii_lowercase();
+        let has = |words: &[&str]| words.iter().any(|w| f.contains(w));
+        if has(&[
+            "wall", "airfoil", "wing", "body", "fuselage", "flap", "slat", "main", "blade", "hull",
+            "pylon", "nacelle",
+        ]) {
+            BcKind::Wall
+        } else if has(&["sym"]) {
+            BcKind::Symmetry
+        } else if has(&["far"]) {
+            BcKind::Farfield
+        } else if has(&["inflow", "inlet"]) {
+            BcKind::Inflow
+        } else if has(&["outflow", "outlet"]) {
+            BcKind::Outflow
+        } else {
+            BcKind::Other
+        }
+    }
 }

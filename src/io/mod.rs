@@ -19,6 +19,7 @@ pub mod obj;
 pub mod patches;
 pub mod plot3d;
 pub mod su2;
+pub mod text;
 pub mod vtk;
 pub mod vtk_read;
 

@@ -7,7 +7,7 @@
 //! [`read_plot3d`] autodetects the flavour the way VTK/ParaView do (see `binary` and `ascii` for
 //! the exact rules) and rejects malformed files with a message naming block, record and bytes.
 
-use std::borrow::Cow;
+use std::borrow::{Borrow, Cow};
 use std::fmt;
 use std::io::Write;
 use std::path::Path;
@@ -154,9 +154,10 @@ enum Item<'a> {
 /// With `fmt.two_d` every block must be planar; otherwise planar blocks are written as 3D with
 /// z = 0, nk = 1. `iblank` (one array of ni·nj·nk values per block) requires `fmt.iblank`; with
 /// `fmt.iblank` and `None` every node gets IBLANK = 1. Non-finite coordinates are refused.
-pub fn write_plot3d(
+/// `blocks` may be blocks or references to them (nothing is copied).
+pub fn write_plot3d<B: Borrow<Block>>(
     path: &Path,
-    blocks: &[Block],
+    blocks: &[B],
     fmt: &Plot3dFormat,
     iblank: Option<&[Vec<i32>]>,
 ) -> Result<()> {
@@ -186,8 +187,8 @@ pub fn read_plot3d(path: &Path) -> Result<Plot3dFile> {
 }
 
 /// Validates the blocks and lays out the records of the file.
-fn build_records<'a>(
-    blocks: &'a [Block],
+fn build_records<'a, B: Borrow<Block>>(
+    blocks: &'a [B],
     fmt: &Plot3dFormat,
     iblank: Option<&'a [Vec<i32>]>,
 ) -> std::result::Result<Vec<Vec<Item<'a>>>, String> {
@@ -211,7 +212,7 @@ fn build_records<'a>(
     let mut dims = Vec::with_capacity(nb * nd);
     let mut records = Vec::with_capacity(nb + 2);
     let mut block_recs = Vec::with_capacity(nb);
-    for (b, blk) in blocks.iter().enumerate() {
+    for (b, blk) in blocks.iter().map(Borrow::borrow).enumerate() {
         let at = format!("block {} of {nb}", b + 1);
         if fmt.two_d && !matches!(blk, Block::Planar(_)) {
             return Err(format!(

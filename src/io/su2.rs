@@ -1,8 +1,11 @@
 //! SU2 native mesh output (`.su2`): the merged multi-block mesh ([`crate::io::mesh`]) as one
 //! zone of quadrilaterals (2D) or hexahedra (3D), 0-based node numbers, and one `MARKER_TAG`
-//! per family with its boundary lines or quadrilaterals.
+//! per family with its boundary lines or quadrilaterals. SU2 takes boundary conditions from
+//! its configuration file, so each marker's kind (given or by its name) is a comment line
+//! `% marker NAME: KIND` after the first.
 
 use crate::io::mesh::{Cells, Mesh};
+use crate::io::text::{push_f64, push_int, write_par, write_ranges, CHUNK};
 use crate::io::write_atomic;
 use crate::{Error, Result};
 use std::path::Path;
@@ -45,45 +48,54 @@ pub fn write_su2(path: &Path, mesh: &Mesh) -> Result<()> {
     };
     write_atomic(path, |w| {
         writeln!(w, "% written by ellipgrid: {} blocks", mesh.blocks.len())?;
+        // SU2 sets boundary conditions in its configuration file: each marker's kind here
+        for (fam, bc) in mesh.families.iter().zip(&mesh.bcs) {
+            writeln!(w, "% marker {}: {}", marker(fam), bc.name())?;
+        }
         writeln!(w, "NDIME= {ndime}")?;
         writeln!(w, "NELEM= {}", mesh.ncells())?;
-        let mut e = 0usize;
-        for b in &mesh.blocks {
-            let [ci, cj, ck] = b.cell_dims();
-            for k in 0..ck {
-                for j in 0..cj {
-                    for i in 0..ci {
-                        let n = b.cell_nodes(i, j, k);
-                        write!(w, "{cell_type}")?;
-                        for v in &n[..nc] {
-                            write!(w, " {v}")?;
-                        }
-                        writeln!(w, " {e}")?;
-                        e += 1;
-                    }
+        let chunks = mesh.cell_chunks(CHUNK);
+        write_ranges(w, chunks.len(), |c, buf| {
+            let (b, ref cells) = chunks[c];
+            let mb = &mesh.blocks[b];
+            let [ci, cj, _] = mb.cell_dims();
+            for local in cells.clone() {
+                let n = mb.cell_nodes(local % ci, (local / ci) % cj, local / (ci * cj));
+                push_int(buf, cell_type);
+                for v in &n[..nc] {
+                    buf.push(b' ');
+                    push_int(buf, *v);
                 }
+                buf.push(b' ');
+                push_int(buf, mb.first_cell + local);
+                buf.push(b'\n');
             }
-        }
-        writeln!(w, "NPOIN= {}", mesh.points.len())?;
-        for (k, p) in mesh.points.iter().enumerate() {
-            if volume {
-                writeln!(w, "{} {} {} {k}", p[0], p[1], p[2])?;
-            } else {
-                writeln!(w, "{} {} {k}", p[0], p[1])?;
-            }
-        }
+        })?;
+        writeln!(w, "NPOIN= {}", mesh.npoints())?;
+        let ndim = if volume { 3 } else { 2 };
+        write_ranges(w, mesh.npoints().div_ceil(CHUNK), |c, buf| {
+            mesh.points_in(c * CHUNK..(c + 1) * CHUNK, |k, p| {
+                for x in &p[..ndim] {
+                    push_f64(buf, *x);
+                    buf.push(b' ');
+                }
+                push_int(buf, k);
+                buf.push(b'\n');
+            })
+        })?;
         writeln!(w, "NMARK= {}", mesh.families.len())?;
         let nf = mesh.face_nodes();
         for (fam, faces) in mesh.families.iter().zip(&mesh.boundary) {
             writeln!(w, "MARKER_TAG= {}", marker(fam))?;
             writeln!(w, "MARKER_ELEMS= {}", faces.len())?;
-            for f in faces {
-                write!(w, "{face_type}")?;
-                for v in &f.nodes[..nf] {
-                    write!(w, " {v}")?;
+            write_par(w, faces.len(), |k, buf| {
+                push_int(buf, face_type);
+                for v in &faces[k].nodes[..nf] {
+                    buf.push(b' ');
+                    push_int(buf, *v);
                 }
-                writeln!(w)?;
-            }
+                buf.push(b'\n');
+            })?;
         }
         Ok(())
     })

@@ -3,10 +3,13 @@
 //! Generation and writing are separate so that a folded grid can be reported without any
 //! output file being written.
 
+mod mesh;
 pub mod multiblock;
 pub mod multivolume;
 pub mod smooth;
 pub mod volume;
+
+pub use mesh::{mesh_options, write_mesh, MeshOptions, FOAM_SPAN, NO_CGNS};
 
 use crate::algebraic::transform::transfinite;
 use crate::case::{BlockKind, LoadedCase};
@@ -333,9 +336,6 @@ pub enum OutputKind {
     Cgns,
 }
 
-/// The span along z of a planar grid written as an OpenFOAM mesh (one cell thick).
-pub const FOAM_SPAN: f64 = 1.0;
-
 /// The output kind of a path, or an error listing the known extensions.
 pub fn output_kind(path: &Path) -> Result<OutputKind> {
     let ext = path
@@ -383,16 +383,17 @@ pub fn write_outputs(
     paths: &[PathBuf],
     fmt: &Plot3dFormat,
 ) -> Result<Vec<PathBuf>> {
-    write_outputs_with(blocks, None, paths, fmt)
+    write_outputs_with(blocks, None, paths, fmt, &MeshOptions::default())
 }
 
-/// [`write_outputs`] with the connectivity of a multi-block case (for `.conn` files and
-/// solver meshes).
+/// [`write_outputs`] with the connectivity of a multi-block case (for `.conn` files and the
+/// solver meshes' families) and the solver meshes' options.
 pub fn write_outputs_with(
     blocks: &[(String, Block)],
     topology: Option<&ConnFile>,
     paths: &[PathBuf],
     fmt: &Plot3dFormat,
+    mesh: &MeshOptions,
 ) -> Result<Vec<PathBuf>> {
     // Check every path first, so that a bad name late in the list writes nothing.
     let kinds = paths
@@ -410,7 +411,7 @@ pub fn write_outputs_with(
         ));
     }
     // All or nothing: a failure at the third file must not leave the first two.
-    crate::io::staged(|| write_each(blocks, topology, paths, &kinds, fmt))
+    crate::io::staged(|| write_each(blocks, topology, paths, &kinds, fmt, mesh))
 }
 
 /// The loop of [`write_outputs_with`], inside its stage.
@@ -420,17 +421,18 @@ fn write_each(
     paths: &[PathBuf],
     kinds: &[OutputKind],
     fmt: &Plot3dFormat,
+    mesh: &MeshOptions,
 ) -> Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     for (path, &kind) in paths.iter().zip(kinds) {
         match kind {
             OutputKind::Plot3d => {
-                let only: Vec<Block> = blocks.iter().map(|(_, b)| b.clone()).collect();
+                let only: Vec<&Block> = blocks.iter().map(|(_, b)| b).collect();
                 let mut f = *fmt;
                 if only.len() > 1 {
                     f.multi_block = true;
                 }
-                if only.iter().any(|b| !matches!(b, Block::Planar(_))) {
+                if only.iter().any(|b| !matches!(b, &&Block::Planar(_))) {
                     f.two_d = false;
                 }
                 plot3d::write_plot3d(path, &only, &f, None)?;
@@ -491,68 +493,11 @@ fn write_each(
                     Some(c) => c.clone(),
                     None => crate::io::mesh::sides_as_patches(blocks),
                 };
-                written.extend(write_mesh(path, kind, blocks, &conn)?);
+                written.extend(write_mesh(path, kind, blocks, &conn, mesh)?);
             }
         }
     }
     Ok(written)
-}
-
-/// Writes a CGNS file (the `cgns` feature), or says how to get one.
-fn write_cgns(
-    path: &Path,
-    blocks: &[(String, Block)],
-    conn: &crate::io::connectivity::ConnFile,
-) -> Result<()> {
-    #[cfg(feature = "cgns")]
-    {
-        crate::io::cgns::write_cgns(path, blocks, conn)
-    }
-    #[cfg(not(feature = "cgns"))]
-    {
-        let _ = (blocks, conn);
-        Err(Error::input(path.display().to_string(), NO_CGNS))
-    }
-}
-
-/// Why a build without the `cgns` feature refuses CGNS files.
-pub const NO_CGNS: &str = "this ellipgrid was built without CGNS: build it with `cargo build \
-     --release --features cgns` (needs Debian's libcgns-dev and libclang-dev)";
-
-/// Writes `blocks`, connected as `conn` says, as one unstructured solver mesh (OpenFOAM,
-/// SU2 or Gmsh; `kind` says which) or as a structured CGNS file. Returns the files written.
-pub fn write_mesh(
-    path: &Path,
-    kind: OutputKind,
-    blocks: &[(String, Block)],
-    conn: &crate::io::connectivity::ConnFile,
-) -> Result<Vec<PathBuf>> {
-    use crate::io::mesh::Mesh;
-    let place = path.display().to_string();
-    match kind {
-        OutputKind::Foam => {
-            let planar = blocks.iter().any(|(_, b)| matches!(b, Block::Planar(_)));
-            let mesh = Mesh::build(&place, blocks, conn, planar.then_some(FOAM_SPAN))?;
-            crate::io::foam::write_polymesh(path, &mesh)?;
-            Ok(["points", "faces", "owner", "neighbour", "boundary"]
-                .iter()
-                .map(|f| path.join(f))
-                .collect())
-        }
-        OutputKind::Su2 => {
-            crate::io::su2::write_su2(path, &Mesh::build(&place, blocks, conn, None)?)?;
-            Ok(vec![path.to_path_buf()])
-        }
-        OutputKind::Msh => {
-            crate::io::gmsh::write_msh(path, &Mesh::build(&place, blocks, conn, None)?)?;
-            Ok(vec![path.to_path_buf()])
-        }
-        OutputKind::Cgns => {
-            write_cgns(path, blocks, conn)?;
-            Ok(vec![path.to_path_buf()])
-        }
-        _ => Err(Error::input(place, "not a solver mesh format")),
-    }
 }
 
 fn write_vts_block(path: &Path, b: &Block) -> Result<()> {

@@ -32,6 +32,9 @@ pub struct TopoEdge {
     pub floating: bool,
     /// Boundary-patch family (a boundary edge's name for the solver's boundary conditions).
     pub family: String,
+    /// The family's boundary condition as the case file names it (checked by `case`), if
+    /// given.
+    pub bc: Option<String>,
 }
 
 /// One edge as a block side uses it: `reversed` if the side runs from the edge's `to` vertex.

@@ -10,6 +10,7 @@ fn edge(name: &str, from: usize, to: usize, n: usize, floating: bool) -> TopoEdg
         orthogonal: false,
         floating,
         family: name.into(),
+        bc: None,
     }
 }
 

@@ -45,6 +45,8 @@ pub struct Topology3 {
     pub faces: Topology,
     /// Boundary-patch family of each face.
     pub families: Vec<String>,
+    /// The boundary condition given for each face (its family's), if any.
+    pub bcs: Vec<Option<String>>,
     pub volumes: Vec<TopoVolume>,
 }
 
@@ -56,6 +58,7 @@ impl Topology3 {
     pub fn new(
         faces: Topology,
         families: Vec<String>,
+        bcs: Vec<Option<String>>,
         volumes: &[VolumeFaces],
         place: &str,
     ) -> Result<Self> {
@@ -72,6 +75,7 @@ impl Topology3 {
         let mut topo = Topology3 {
             faces,
             families,
+            bcs,
             volumes: Vec::new(),
         };
         for v in volumes {

@@ -132,15 +132,37 @@ fn c(s: &str) -> CString {
     CString::new(s).expect("static name")
 }
 
-/// CGNS's family boundary condition for a family.
-fn bc_type(family: &str) -> BCType_t {
-    match BcKind::of(family) {
+/// CGNS's family boundary condition for a family's.
+fn bc_type(bc: BcKind) -> BCType_t {
+    match bc {
         BcKind::Wall => BCType_t_BCWall,
         BcKind::Symmetry => BCType_t_BCSymmetryPlane,
         BcKind::Farfield => BCType_t_BCFarfield,
         BcKind::Inflow => BCType_t_BCInflow,
         BcKind::Outflow => BCType_t_BCOutflow,
         BcKind::Empty | BcKind::Other => BCType_t_BCGeneral,
+    }
+}
+
+/// The boundary condition a CGNS `BCType_t` stands for (wall kinds are walls, the rest
+/// general).
+fn bc_kind(t: BCType_t) -> BcKind {
+    #[allow(non_upper_case_globals)]
+    match t {
+        BCType_t_BCWall
+        | BCType_t_BCWallViscous
+        | BCType_t_BCWallViscousHeatFlux
+        | BCType_t_BCWallViscousIsothermal
+        | BCType_t_BCWallInviscid => BcKind::Wall,
+        BCType_t_BCSymmetryPlane => BcKind::Symmetry,
+        BCType_t_BCFarfield => BcKind::Farfield,
+        BCType_t_BCInflow | BCType_t_BCInflowSubsonic | BCType_t_BCInflowSupersonic => {
+            BcKind::Inflow
+        }
+        BCType_t_BCOutflow | BCType_t_BCOutflowSubsonic | BCType_t_BCOutflowSupersonic => {
+            BcKind::Outflow
+        }
+        _ => BcKind::Other,
     }
 }
 
@@ -225,14 +247,23 @@ fn write_base(
         .iter()
         .map(|(_, n)| unique(n, &mut fam_names))
         .collect();
-    for (cn, (_, name)) in families.iter().zip(&conn.families) {
+    for (cn, (id, name)) in families.iter().zip(&conn.families) {
         let (mut fi, mut bi) = (0, 0);
         ok(
             unsafe { cg_family_write(f.fd, base, cn.as_ptr(), &mut fi) },
             "family",
         )?;
         ok(
-            unsafe { cg_fambc_write(f.fd, base, fi, c("FamBC").as_ptr(), bc_type(name), &mut bi) },
+            unsafe {
+                cg_fambc_write(
+                    f.fd,
+                    base,
+                    fi,
+                    c("FamBC").as_ptr(),
+                    bc_type(conn.bc(*id, name)),
+                    &mut bi,
+                )
+            },
             "family BC",
         )?;
     }

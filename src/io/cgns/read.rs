@@ -2,7 +2,7 @@
 //! connections and point-range boundary conditions as a connectivity.
 
 use super::{c, File, NameBuf};
-use crate::io::connectivity::{ConnFile, Range};
+use crate::io::connectivity::{BcKind, ConnFile, Range};
 use crate::io::Block;
 use crate::{Error, Grid2, Grid3, Result};
 use cgns_sys::*;
@@ -251,6 +251,7 @@ pub fn read_cgns(path: &Path) -> Result<(Vec<(String, Block)>, ConnFile)> {
                 .push(((z as usize, corner(&pts, 0), corner(&pts, 1)), id));
         }
     }
+    read_family_bcs(f.fd, &mut conn);
     // Each interface is stored on both sides: keep the side whose (zone, range) comes first.
     for (z, r, donor, d) in raw_links {
         let dz = 1 + zone_names
@@ -284,4 +285,35 @@ pub fn read_cgns(path: &Path) -> Result<(Vec<(String, Block)>, ConnFile)> {
         r.0 = new_of[r.0 - 1];
     }
     Ok((blocks, conn))
+}
+
+/// The base's families' `FamilyBC`s: those other than the one a family's name suggests are
+/// kept as given ([`ConnFile::bcs`]). Families without a `FamilyBC` keep the guess.
+fn read_family_bcs(fd: c_int, conn: &mut ConnFile) {
+    let mut n: c_int = 0;
+    // SAFETY: the file is open; out-parameters are valid for the calls' writes.
+    if unsafe { cg_nfamilies(fd, 1, &mut n) } != CG_OK as c_int {
+        return;
+    }
+    for fam in 1..=n {
+        let (mut name, mut bcname): (NameBuf, NameBuf) = ([0; 33], [0; 33]);
+        let (mut nboco, mut ngeo): (c_int, c_int) = (0, 0);
+        // SAFETY: as above; names are 33-byte buffers (CGNS names hold 32 characters).
+        let read = unsafe { cg_family_read(fd, 1, fam, name.as_mut_ptr(), &mut nboco, &mut ngeo) };
+        if read != CG_OK as c_int || nboco < 1 {
+            continue;
+        }
+        let mut t: BCType_t = BCType_t_BCTypeNull;
+        // SAFETY: as above.
+        if unsafe { cg_fambc_read(fd, 1, fam, 1, bcname.as_mut_ptr(), &mut t) } != CG_OK as c_int {
+            continue;
+        }
+        let family = name_of(&name);
+        let kind = super::bc_kind(t);
+        if let Some(f) = conn.families.iter().find(|f| f.1 == family) {
+            if kind != BcKind::of(&family) {
+                conn.bcs.push((f.0, kind));
+            }
+        }
+    }
 }

@@ -201,6 +201,7 @@ pub(super) fn classify(
     let mut family_of: HashMap<[u32; 4], (usize, bool)> = HashMap::new();
     let fams: Vec<(usize, String)> = conn.families.clone();
     mesh.families = fams.iter().map(|f| f.1.clone()).collect();
+    mesh.bcs = fams.iter().map(|f| conn.bc(f.0, &f.1)).collect();
     mesh.boundary = vec![Vec::new(); fams.len()];
     for (n, (r, id)) in conn.patches.iter().enumerate() {
         let what = format!("patch {}", n + 1);
@@ -307,37 +308,64 @@ pub(super) fn classify(
     Ok(())
 }
 
-impl Mesh {
+impl Mesh<'_> {
     /// Calls `f(nodes, owner, neighbour)` for every face between two cells of a hexahedral
     /// mesh, in upper-triangular order: by owner, then by neighbour (OpenFOAM's order).
     pub fn for_each_internal_face(&self, mut f: impl FnMut(&[u32; 4], usize, usize)) {
-        let mut joins = self.joins.iter().peekable();
-        let mut near: Vec<(usize, [u32; 4])> = Vec::with_capacity(8);
-        for mb in &self.blocks {
-            let [ci, cj, ck] = mb.cell_dims();
-            for k in 0..ck {
-                for j in 0..cj {
-                    for i in 0..ci {
-                        let c = mb.cell(i, j, k);
-                        near.clear();
-                        if i + 1 < ci {
-                            near.push((c + 1, mb.cell_face(i, j, k, 1)));
-                        }
-                        if j + 1 < cj {
-                            near.push((c + ci, mb.cell_face(i, j, k, 3)));
-                        }
-                        if k + 1 < ck {
-                            near.push((c + ci * cj, mb.cell_face(i, j, k, 5)));
-                        }
-                        while let Some(jn) = joins.next_if(|jn| jn.owner == c) {
-                            near.push((jn.neighbour, jn.nodes));
-                        }
-                        near.sort_unstable_by_key(|x| x.0);
-                        for (nb, nodes) in &near {
-                            f(nodes, c, *nb);
-                        }
-                    }
-                }
+        for (b, mb) in self.blocks.iter().enumerate() {
+            self.internal_faces_in(b, 0..mb.ncells(), &mut f);
+        }
+    }
+
+    /// The cells of every block in pieces of at most `size`: (block, local cell range), in
+    /// cell order, for writers that format pieces in parallel.
+    pub fn cell_chunks(&self, size: usize) -> Vec<(usize, std::ops::Range<usize>)> {
+        let mut v = Vec::new();
+        for (b, mb) in self.blocks.iter().enumerate() {
+            let n = mb.ncells();
+            v.extend((0..n.div_ceil(size)).map(|c| (b, c * size..((c + 1) * size).min(n))));
+        }
+        v
+    }
+
+    /// [`Mesh::for_each_internal_face`] for the faces owned by the cells `cells` (local
+    /// indices, i fastest) of block `b`.
+    pub fn internal_faces_in(
+        &self,
+        b: usize,
+        cells: std::ops::Range<usize>,
+        mut f: impl FnMut(&[u32; 4], usize, usize),
+    ) {
+        let mb = &self.blocks[b];
+        let [ci, cj, ck] = mb.cell_dims();
+        let first = mb.first_cell + cells.start;
+        let start = self.joins.partition_point(|jn| jn.owner < first);
+        let mut joins = self.joins[start..].iter().peekable();
+        // a hexahedron has six faces, each listed once (classify)
+        let mut near: [(usize, [u32; 4]); 6] = [(0, [0; 4]); 6];
+        for local in cells {
+            let (i, j, k) = (local % ci, (local / ci) % cj, local / (ci * cj));
+            let c = mb.first_cell + local;
+            let mut n = 0;
+            let mut add = |x: (usize, [u32; 4]), n: &mut usize| {
+                near[*n] = x;
+                *n += 1;
+            };
+            if i + 1 < ci {
+                add((c + 1, mb.cell_face(i, j, k, 1)), &mut n);
+            }
+            if j + 1 < cj {
+                add((c + ci, mb.cell_face(i, j, k, 3)), &mut n);
+            }
+            if k + 1 < ck {
+                add((c + ci * cj, mb.cell_face(i, j, k, 5)), &mut n);
+            }
+            while let Some(jn) = joins.next_if(|jn| jn.owner == c) {
+                add((jn.neighbour, jn.nodes), &mut n);
+            }
+            near[..n].sort_unstable_by_key(|x| x.0);
+            for (nb, nodes) in &near[..n] {
+                f(nodes, c, *nb);
             }
         }
     }

@@ -11,16 +11,15 @@
 
 mod faces;
 mod interface;
+mod merge;
 
+pub use crate::io::connectivity::{BcKind, FRONT_AND_BACK};
 pub use faces::{Face, Join};
 pub use interface::{one_to_one, OneToOne};
 
 use crate::io::connectivity::{ConnFile, Range};
 use crate::io::Block;
 use crate::{Error, Result};
-
-/// Family of the two sides of an extruded planar grid.
-pub const FRONT_AND_BACK: &str = "frontAndBack";
 
 /// What the blocks are made of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -45,6 +44,11 @@ pub struct MeshBlock {
     pub first_cell: usize,
     /// The block is left-handed: its cells' node order is reversed to make them right-handed.
     pub flip: bool,
+    /// Id of the block's first node that repeats no earlier node; the block's new nodes
+    /// have the ids from here on, in order.
+    pub first_point: u32,
+    /// Local indices of the nodes that repeat a node met earlier (interfaces), sorted.
+    pub dups: Vec<u32>,
 }
 
 impl MeshBlock {
@@ -65,24 +69,30 @@ impl MeshBlock {
     }
 }
 
-/// The merged mesh.
+/// The merged mesh. Its nodes' coordinates stay in the blocks it was built from
+/// ([`Mesh::point`], [`Mesh::points_in`]): a merged node is numbered at its first occurrence
+/// (blocks in order, i fastest) and has that node's coordinates.
 #[derive(Clone, Debug)]
-pub struct Mesh {
+pub struct Mesh<'a> {
     pub cells: Cells,
     /// Planar blocks extruded by this span along z.
     pub extruded: Option<f64>,
-    /// Merged nodes.
-    pub points: Vec<[f64; 3]>,
+    /// The blocks as nodes in space (planar ones extruded).
+    views: Vec<View<'a>>,
+    /// Number of merged nodes.
+    npoints: usize,
     pub blocks: Vec<MeshBlock>,
     /// Faces between cells of different blocks, or across a cut of one block, sorted by
     /// (owner, neighbour).
     pub joins: Vec<Join>,
     /// Family names; [`Mesh::boundary`] holds each family's faces.
     pub families: Vec<String>,
+    /// Each family's boundary condition (given, or by its name: [`ConnFile::bc`]).
+    pub bcs: Vec<BcKind>,
     pub boundary: Vec<Vec<Face>>,
 }
 
-impl Mesh {
+impl<'a> Mesh<'a> {
     /// Number of cells.
     pub fn ncells(&self) -> usize {
         self.blocks.iter().map(MeshBlock::ncells).sum()
@@ -116,10 +126,10 @@ impl Mesh {
     /// 2³² − 1 nodes.
     pub fn build(
         place: &str,
-        blocks: &[(String, Block)],
+        blocks: &'a [(String, Block)],
         conn: &ConnFile,
         extrude: Option<f64>,
-    ) -> Result<Mesh> {
+    ) -> Result<Mesh<'a>> {
         let bad = |m: String| Error::input(place, m);
         if blocks.is_empty() {
             return Err(bad("no blocks".into()));
@@ -158,16 +168,18 @@ impl Mesh {
         if extrude.is_some() {
             extend_in_k(&mut conn, &views);
         }
-        let merged = merge(place, blocks, &views, &conn)?;
+        let (merged, npoints) = merge::merge(place, blocks, &views, &conn)?;
         let mut blocks_out = Vec::with_capacity(blocks.len());
         let mut first_cell = 0;
-        for ((name, _), (v, ids)) in blocks.iter().zip(views.iter().zip(merged.ids)) {
+        for ((name, _), (v, m)) in blocks.iter().zip(views.iter().zip(merged)) {
             let b = MeshBlock {
                 name: name.clone(),
                 dims: v.dims,
-                ids,
+                ids: m.ids,
                 first_cell,
                 flip: v.left_handed(),
+                first_point: m.first_point,
+                dups: m.dups,
             };
             first_cell += b.ncells();
             blocks_out.push(b);
@@ -175,13 +187,16 @@ impl Mesh {
         let mut mesh = Mesh {
             cells,
             extruded: extrude,
-            points: merged.points,
+            views: Vec::new(),
+            npoints,
             blocks: blocks_out,
             joins: Vec::new(),
             families: Vec::new(),
+            bcs: Vec::new(),
             boundary: Vec::new(),
         };
         faces::classify(place, &mut mesh, &views, blocks, &conn)?;
+        mesh.views = views;
         Ok(mesh)
     }
 }
@@ -240,6 +255,7 @@ fn extend_in_k(c: &mut ConnFile, views: &[View]) {
 }
 
 /// A block seen as nodes (i, j, k) in space; planar blocks extruded get nk = 2.
+#[derive(Clone, Debug)]
 pub(crate) struct View<'a> {
     block: &'a Block,
     pub dims: [usize; 3],
@@ -273,6 +289,15 @@ impl<'a> View<'a> {
                 [g.coord(0)[n], g.coord(1)[n], g.coord(2)[n]]
             }
         }
+    }
+
+    /// Node `n` (local index, i fastest).
+    pub fn point_at(&self, n: usize) -> [f64; 3] {
+        if let Block::Volume(g) = self.block {
+            return [g.coord(0)[n], g.coord(1)[n], g.coord(2)[n]];
+        }
+        let [ni, nj, _] = self.dims;
+        self.point(n % ni, (n / ni) % nj, n / (ni * nj))
     }
 
     /// The block is left-handed: its cells' signed areas (planar) or volumes sum negative.
@@ -311,75 +336,6 @@ impl<'a> View<'a> {
         }
         total < 0.0
     }
-}
-
-/// Merged node ids per block and the merged points.
-struct Merged {
-    ids: Vec<Vec<u32>>,
-    points: Vec<[f64; 3]>,
-}
-
-/// Merges the nodes that interfaces pair (union-find over all block nodes); a merged node
-/// keeps the coordinates of its first occurrence.
-fn merge(
-    place: &str,
-    blocks: &[(String, Block)],
-    views: &[View],
-    conn: &ConnFile,
-) -> Result<Merged> {
-    let offsets: Vec<usize> = views
-        .iter()
-        .scan(0usize, |acc, v| {
-            let o = *acc;
-            *acc += v.dims.iter().product::<usize>();
-            Some(o)
-        })
-        .collect();
-    let total = offsets.last().unwrap_or(&0) + views.last().map_or(0, |v| v.dims.iter().product());
-    let mut parent: Vec<usize> = (0..total).collect();
-    fn root(p: &mut [usize], mut a: usize) -> usize {
-        while p[a] != a {
-            p[a] = p[p[a]];
-            a = p[a];
-        }
-        a
-    }
-    let scale = diameter(views);
-    for (n, [a, b]) in conn.interfaces.iter().enumerate() {
-        let pairs = interface::correspond(place, blocks, views, n, a, b, scale)?.1;
-        for [p, q] in pairs {
-            let (p, q) = (offsets[p.0] + p.1, offsets[q.0] + q.1);
-            let (rp, rq) = (root(&mut parent, p), root(&mut parent, q));
-            // the smaller index is the root, so a node keeps its first occurrence
-            let (lo, hi) = (rp.min(rq), rp.max(rq));
-            parent[hi] = lo;
-        }
-    }
-    let mut id = vec![u32::MAX; total];
-    let mut points = Vec::new();
-    let mut ids = Vec::with_capacity(views.len());
-    for (b, v) in views.iter().enumerate() {
-        let [ni, nj, nk] = v.dims;
-        let mut local = Vec::with_capacity(ni * nj * nk);
-        for k in 0..nk {
-            for j in 0..nj {
-                for i in 0..ni {
-                    let g = offsets[b] + i + ni * (j + nj * k);
-                    let r = root(&mut parent, g);
-                    if id[r] == u32::MAX {
-                        if points.len() >= u32::MAX as usize {
-                            return Err(Error::input(place, "more than 2³² − 1 nodes"));
-                        }
-                        id[r] = points.len() as u32;
-                        points.push(v.point(i, j, k));
-                    }
-                    local.push(id[r]);
-                }
-            }
-        }
-        ids.push(local);
-    }
-    Ok(Merged { ids, points })
 }
 
 /// The diagonal of the bounding box of all nodes.
@@ -440,52 +396,4 @@ pub(crate) fn corners(
         hi[c] = z - 1;
     }
     Ok((b, lo, hi))
-}
-
-/// The kind of boundary condition a family's name suggests, for formats that type their
-/// patches (OpenFOAM's `wall`, CGNS's `BCWall`, …).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BcKind {
-    /// A solid surface: the name holds `wall`, `airfoil`, `wing`, `body`, `fuselage`, `flap`,
-    /// `slat`, `main`, `blade`, `hull`, `pylon` or `nacelle`.
-    Wall,
-    /// The name holds `sym`.
-    Symmetry,
-    /// The name holds `far`.
-    Farfield,
-    /// The name holds `inflow` or `inlet`.
-    Inflow,
-    /// The name holds `outflow` or `outlet`.
-    Outflow,
-    /// The two sides of an extruded planar grid ([`FRONT_AND_BACK`]).
-    Empty,
-    /// Anything else.
-    Other,
-}
-
-impl BcKind {
-    /// The kind a family name suggests (case-insensitive).
-    pub fn of(family: &str) -> BcKind {
-        if family == FRONT_AND_BACK {
-            return BcKind::Empty;
-        }
-        let f = family.to_ascii_lowercase();
-        let has = |words: &[&str]| words.iter().any(|w| f.contains(w));
-        if has(&[
-            "wall", "airfoil", "wing", "body", "fuselage", "flap", "slat", "main", "blade", "hull",
-            "pylon", "nacelle",
-        ]) {
-            BcKind::Wall
-        } else if has(&["sym"]) {
-            BcKind::Symmetry
-        } else if has(&["far"]) {
-            BcKind::Farfield
-        } else if has(&["inflow", "inlet"]) {
-            BcKind::Inflow
-        } else if has(&["outflow", "outlet"]) {
-            BcKind::Outflow
-        } else {
-            BcKind::Other
-        }
-    }
 }
