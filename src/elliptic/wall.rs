@@ -48,8 +48,10 @@ pub const MAX_PASSES: usize = 6;
 /// Passes stop once every column node's |ln(goal / distance)| is below this (the first-cell
 /// heights are then within ~0.5 %).
 pub const TOLERANCE: f64 = 0.05;
-/// Picard tolerance of the intermediate solves (relative to the block's diameter).
-const LOOSE_TOLERANCE: f64 = 1e-8;
+/// Picard tolerance of the intermediate solves (relative to the block's diameter). The passes
+/// remap from these grids, so the final grid is defined only to about this tolerance (a start
+/// grid changes it by that much).
+pub const LOOSE_TOLERANCE: f64 = 1e-8;
 /// Largest change of a node's parameter in one pass (factor).
 const MAX_RATIO: f64 = 4.0;
 /// With `orthogonal`, passes also stop only once every first off-wall node is within this sine
@@ -406,9 +408,38 @@ pub fn grid_volume_wall_with(
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<VolumeResult> {
+    grid_volume_wall_from(faces, w, None, opts, solver, params, place, progress)
+}
+
+/// [`grid_volume_wall_with`] whose first solve starts from `start` (boundary nodes replaced
+/// by the faces'; the transfinite grid if None).
+#[allow(clippy::too_many_arguments)]
+pub fn grid_volume_wall_from(
+    faces: &Faces,
+    w: usize,
+    start: Option<Grid3>,
+    opts: WallOptions,
+    solver: &mut dyn LinearSolver<Stencil19>,
+    params: &PicardParams,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<VolumeResult> {
     let targets = WallTargets::new(faces, w, place)?;
     let mut pg = bilinear(&EdgeFunctions3::arclength(faces), place)?;
-    let mut x = crate::algebraic::transfinite3d::transfinite(faces);
+    let mut x = match start {
+        Some(g) if g.dims() == faces.dims() => g,
+        Some(g) => {
+            return Err(Error::input(
+                place,
+                format!(
+                    "start grid has {:?} nodes but the faces need {:?}",
+                    g.dims(),
+                    faces.dims()
+                ),
+            ))
+        }
+        None => crate::algebraic::transfinite3d::transfinite(faces),
+    };
     faces.apply_to(&mut x);
     let mut info: Option<PicardInfo> = None;
     let mut goal = Vec::new();

@@ -5,6 +5,7 @@
 
 pub mod multiblock;
 pub mod smooth;
+pub mod verify;
 pub mod volume;
 
 use crate::algebraic::transform::transfinite;

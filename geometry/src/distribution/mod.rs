@@ -45,10 +45,11 @@ impl Distribution {
         }
     }
 
-    /// The distribution of n nodes refined `level` times in its own parameter: (n − 1)·2^level
-    /// + 1 nodes, node i·2^level equal to node i of [`Distribution::sample`]`(n)` bit for bit,
-    /// the nodes in between on the same continuous function σ(ξ) (grid families for
-    /// convergence studies: the coarse nodes are every 2^level-th node of the fine ones).
+    /// The distribution of n nodes refined `level` times in its own parameter, with
+    /// (n − 1)·2^level + 1 nodes: node i·2^level equals node i of
+    /// [`Distribution::sample`]`(n)` bit for bit, the nodes in between lie on the same
+    /// continuous function σ(ξ) (grid families for convergence studies: the coarse nodes are
+    /// every 2^level-th node of the fine ones).
     ///
     /// - uniform: the uniform distribution of the finer count;
     /// - geometric: σ(k + τ) = σ_k + Δ_k (r^τ − 1)/(r − 1) between nodes k and k + 1, which is
