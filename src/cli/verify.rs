@@ -93,6 +93,14 @@ fn order(p: Option<f64>) -> String {
     p.map(|p| format!("{p:.2}")).unwrap_or_else(|| "—".into())
 }
 
+fn at_tolerance(yes: bool) -> &'static str {
+    if yes {
+        ": the grids agree to the solver's tolerance (no order to observe)"
+    } else {
+        ""
+    }
+}
+
 fn diff(d: &Difference) -> String {
     format!("{:.2e} / {:.2e}", d.rms, d.max)
 }
@@ -128,7 +136,7 @@ fn print(r: &VerifyReport) {
             dims(&b.dims[0]),
             if b.pass { "pass" } else { "FAIL" }
         );
-        println!("  grid family");
+        println!("  grid family{}", at_tolerance(b.family.at_tolerance));
         for (l, d) in b.family.differences.iter().enumerate() {
             let p = if l == 0 {
                 String::new()
@@ -147,7 +155,11 @@ fn print(r: &VerifyReport) {
             );
         }
         if let Some(c) = &b.parametrization {
-            println!("  parametrization (warp seed {})", r.seed);
+            println!(
+                "  parametrization (warp seed {}){}",
+                r.seed,
+                at_tolerance(c.at_tolerance)
+            );
             for (l, d) in c.differences.iter().enumerate() {
                 let p = if l == 0 {
                     String::new()
@@ -197,5 +209,8 @@ fn print(r: &VerifyReport) {
     );
     for f in &r.family {
         println!("wrote {f}");
+    }
+    if let Some(n) = &r.family_note {
+        println!("{n}");
     }
 }

@@ -124,6 +124,9 @@ pub struct VerifyReport {
     pub seconds: f64,
     /// Family files written (`--write-family`).
     pub family: Vec<String>,
+    /// Why no family was written although asked for (a grid folds).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub family_note: Option<String>,
 }
 
 impl VerifyReport {
@@ -217,7 +220,7 @@ fn plan(cases: &[LoadedCase], runs: usize, want_parallel: bool) -> Result<bool> 
 
 /// Verifies every block of `case` (module docs). Bad input is an error; a property that fails
 /// is not (the report says which; [`VerifyReport::failure`]). With `family`, the grids of
-/// every level are written (all or nothing; not if a grid folds).
+/// every level are written (all or nothing; not if a grid folds: the report says so).
 pub fn verify(
     case: &LoadedCase,
     opts: &VerifyOptions,
@@ -233,6 +236,12 @@ pub fn verify(
                 opts.levels
             ),
         ));
+    }
+    if let Some(f) = family {
+        // bad names first, before the work
+        for p in (0..opts.levels).flat_map(|l| f.paths(&stem(case), l)) {
+            crate::job::output_kind(&p)?;
+        }
     }
     let cases = (0..opts.levels)
         .map(|l| case.refined(l as u32))
@@ -276,9 +285,15 @@ pub fn verify(
     let blocks = checks::verdicts(&gens, &kinds, &warped, &starts, opts, case)?;
     let pass = blocks.iter().all(|b| b.pass);
     let mut written = Vec::new();
-    if let Some(f) = family {
-        written = write_family(case, &gens, f, &place)?;
-    }
+    let folds = gens.iter().position(|g| g.report.fold_error().is_some());
+    let family_note = match (family, folds) {
+        (Some(_), Some(l)) => Some(format!("no family written: level {l} folds")),
+        (Some(f), None) => {
+            written = write_family(case, &gens, f)?;
+            None
+        }
+        (None, _) => None,
+    };
     Ok(VerifyReport {
         case: place,
         levels: levels
@@ -298,7 +313,17 @@ pub fn verify(
         pass,
         seconds: t0.elapsed().as_secs_f64(),
         family: written.iter().map(|p| p.display().to_string()).collect(),
+        family_note,
     })
+}
+
+/// The file name stem of the case (the family's file names start with it).
+fn stem(case: &LoadedCase) -> String {
+    case.path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("grid")
+        .to_string()
 }
 
 /// Writes every level of the family (all files or none).
@@ -306,29 +331,9 @@ fn write_family(
     case: &LoadedCase,
     gens: &[&Generated],
     out: &FamilyOutput,
-    place: &str,
 ) -> Result<Vec<PathBuf>> {
-    if let Some((l, e)) = gens
-        .iter()
-        .enumerate()
-        .find_map(|(l, g)| g.report.fold_error().map(|e| (l, e)))
-    {
-        return Err(Error::input(
-            format!("{place}: --write-family"),
-            format!("level {l} folds, no family written: {e}"),
-        ));
-    }
-    let stem = case
-        .path
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("grid")
-        .to_string();
     let fmt = crate::job::plot3d_format(case)?;
-    let all: Vec<Vec<PathBuf>> = (0..gens.len()).map(|l| out.paths(&stem, l)).collect();
-    for p in all.iter().flatten() {
-        crate::job::output_kind(p)?;
-    }
+    let all: Vec<Vec<PathBuf>> = (0..gens.len()).map(|l| out.paths(&stem(case), l)).collect();
     std::fs::create_dir_all(&out.dir).map_err(|e| Error::io(&out.dir, e))?;
     crate::io::staged(|| {
         let mut written = Vec::new();
