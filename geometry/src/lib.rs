@@ -44,7 +44,9 @@ pub mod surface;
 
 pub use airfoil::{airfoil_curve, read_airfoil_dat};
 pub use bvh::BoxTree;
-pub use curve::{sample, Arc, ArclengthMap, Curve, Line, Naca4, Naca4Side, Polyline, Spline};
+pub use curve::{
+    sample, Arc, ArclengthMap, Curve, Line, Naca4, Naca4Side, Polyline, Spline, SurfaceLine,
+};
 pub use distribution::{geometric, reverse, uniform, vinokur, vinokur_refined, Distribution};
 pub use surface::{
     project, project_to_edge, project_within, scherk_distance, BSplineSurf, HermiteSurface, Plane,

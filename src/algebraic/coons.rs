@@ -4,46 +4,24 @@
 
 use crate::algebraic::transform::{straight_line, ParamGrid};
 use crate::grid::arclength::{normalized_arclength, EdgeFunctions};
-use crate::grid::faces::{block_node, face_dims};
+use crate::grid::faces::{face_dims, face_edges};
 use crate::Grid2;
-
-/// Position of an edge: along axis `d`, at the hi/lo ends of the two other axes of node `n`.
-pub fn edge_of(d: usize, n: [usize; 3], dims: [usize; 3]) -> usize {
-    let o: Vec<usize> = (0..3).filter(|&a| a != d).collect();
-    let hi = |a: usize| usize::from(n[a] == dims[a] - 1 && n[a] > 0);
-    4 * d + hi(o[0]) + 2 * hi(o[1])
-}
 
 /// The Coons patch of face f from the twelve edge point lists (module docs).
 pub fn coons_face(f: usize, edges: &[Vec<[f64; 3]>; 12], dims: [usize; 3]) -> Grid2<3> {
     coons_eval(f, edges, dims, &coons_params(f, edges, dims))
 }
 
-/// The four edges of face f: along a at b = 0 and at b = end, along b at a = 0 and at a = end.
-fn face_edges(f: usize, edges: &[Vec<[f64; 3]>; 12], dims: [usize; 3]) -> [&Vec<[f64; 3]>; 4] {
-    let [na, nb] = face_dims(f, dims);
-    let (ta, tb) = match f / 2 {
-        0 => (1, 2),
-        1 => (0, 2),
-        _ => (0, 1),
-    };
-    [
-        &edges[edge_of(ta, block_node(f, 0, 0, dims), dims)],
-        &edges[edge_of(ta, block_node(f, 0, nb - 1, dims), dims)],
-        &edges[edge_of(tb, block_node(f, 0, 0, dims), dims)],
-        &edges[edge_of(tb, block_node(f, na - 1, 0, dims), dims)],
-    ]
+/// The four edges of face f as the sides E1..E4 of a 2D block in the face's (a, b) indices.
+fn face_sides(f: usize, edges: &[Vec<[f64; 3]>; 12]) -> [&[[f64; 3]]; 4] {
+    let [ba, ta, lb, rb] = face_edges(f);
+    [&edges[lb], &edges[rb], &edges[ba], &edges[ta]]
 }
 
 /// The straight-line parameters [39, 40] of face f from its four edges' arclength.
 pub fn coons_params(f: usize, edges: &[Vec<[f64; 3]>; 12], dims: [usize; 3]) -> ParamGrid {
-    let [ba, ta_, lb, rb] = face_edges(f, edges, dims);
-    straight_line(&EdgeFunctions {
-        s_e3: normalized_arclength(ba),
-        s_e4: normalized_arclength(ta_),
-        t_e1: normalized_arclength(lb),
-        t_e2: normalized_arclength(rb),
-    })
+    debug_assert_eq!(edges[face_edges(f)[0]].len(), face_dims(f, dims)[0]);
+    sides_params(face_sides(f, edges))
 }
 
 /// The Coons patch of face f with the blending weights `pg` (the edges are sampled at the
@@ -54,13 +32,37 @@ pub fn coons_eval(
     dims: [usize; 3],
     pg: &ParamGrid,
 ) -> Grid2<3> {
-    let [na, nb] = face_dims(f, dims);
-    let [ba, ta_, lb, rb] = face_edges(f, edges, dims);
-    let (c00, c10, c01, c11) = (ba[0], ba[na - 1], ta_[0], ta_[na - 1]);
+    debug_assert_eq!(edges[face_edges(f)[0]].len(), face_dims(f, dims)[0]);
+    sides_eval(face_sides(f, edges), pg)
+}
+
+/// The Coons patch of a four-sided face given by its sides E1..E4 (a 2D block's: E1 at i = 0
+/// and E2 at i = N along j, E3 at j = 0 and E4 at j = M along i; corners shared), blended with
+/// the straight-line parameters of the sides' arclength.
+pub fn coons_sides(sides: [&[[f64; 3]]; 4]) -> Grid2<3> {
+    sides_eval(sides, &sides_params(sides))
+}
+
+/// The straight-line parameters [39, 40] of four sides E1..E4 from their arclength.
+pub fn sides_params(sides: [&[[f64; 3]]; 4]) -> ParamGrid {
+    let [e1, e2, e3, e4] = sides;
+    straight_line(&EdgeFunctions {
+        s_e3: normalized_arclength(e3),
+        s_e4: normalized_arclength(e4),
+        t_e1: normalized_arclength(e1),
+        t_e2: normalized_arclength(e2),
+    })
+}
+
+/// The Coons patch of four sides E1..E4 with the blending weights `pg`.
+pub fn sides_eval(sides: [&[[f64; 3]]; 4], pg: &ParamGrid) -> Grid2<3> {
+    let [lb, rb, ba, ta] = sides;
+    let (na, nb) = (ba.len(), lb.len());
+    let (c00, c10, c01, c11) = (ba[0], ba[na - 1], ta[0], ta[na - 1]);
     Grid2::<3>::from_fn(na, nb, |a, b| {
         let (s, t) = pg.at(a, b);
         std::array::from_fn(|c| {
-            (1.0 - s) * lb[b][c] + s * rb[b][c] + (1.0 - t) * ba[a][c] + t * ta_[a][c]
+            (1.0 - s) * lb[b][c] + s * rb[b][c] + (1.0 - t) * ba[a][c] + t * ta[a][c]
                 - ((1.0 - s) * (1.0 - t) * c00[c]
                     + s * (1.0 - t) * c10[c]
                     + (1.0 - s) * t * c01[c]

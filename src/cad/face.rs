@@ -17,16 +17,14 @@
 
 use super::trim::{CadSurface, FaceLoop, LoopPoint};
 use super::{quietly, Route, StepFace};
-use crate::algebraic::ControlKind;
 use crate::case::DistributionSpec;
-use crate::elliptic::domain::grid_block;
-use crate::elliptic::picard::{PicardInfo, PicardParams};
-use crate::grid::boundary::Boundary2;
-use crate::grid::{Edge, Grid2};
+use crate::elliptic::picard::PicardInfo;
+use crate::grid::Edge;
 use crate::solve::LinearSolver;
-use crate::surface::pipeline::{grid_surface, SurfaceResult};
+use crate::surface::face::grid_face_composite;
+use crate::surface::pipeline::SurfaceResult;
 use crate::{Error, Result};
-use ellipgrid_geometry::{HermiteSurface, Surface, SurfacePoint, TruckSurface, Vec3};
+use ellipgrid_geometry::{TruckSurface, Vec3};
 use truck_stepio::r#in::alias::Surface as StepSurface;
 
 /// A boundary point farther than this from the face's surface (relative to the loop's size)
@@ -117,67 +115,30 @@ fn trimmed(
             "truck failed to evaluate a boundary edge or the surface",
         ))
     })?;
-    // Step 2: the Section 2 grid in the scaled (u, v) plane.
-    let b = Boundary2::new(boundary.uv_scaled.clone(), &format!("{place}, (u, v) grid"))?;
-    let params = PicardParams::default();
-    let uvg = grid_block::<2>(&b, None, ControlKind::Laplace, solver, &params, place)?;
-    check_unfolded(&uvg.grid, place)?;
-    let sc = boundary.scale;
-    let net: Vec<Vec3> = (0..ni * nj)
-        .map(|p| {
-            Vec3::new(
-                uvg.grid.coord(0)[p] / sc[0],
-                uvg.grid.coord(1)[p] / sc[1],
-                0.0,
-            )
-        })
-        .collect();
-    let w = HermiteSurface::new(ni, nj, net).map_err(|source| Error::Geometry {
-        place: place.to_string(),
-        source,
+    // Steps 2–3: the face's Winslow parametrization and Section 4 on the composite surface;
+    // the final grid lies on the CAD surface exactly, boundary nodes on the CAD edges.
+    let r = quietly(|| {
+        grid_face_composite(
+            &surface,
+            &boundary.points,
+            &boundary.uv,
+            boundary.scale,
+            [false; 4],
+            solver,
+            place,
+        )
+    })
+    .unwrap_or_else(|_| {
+        Err(Error::input(
+            place,
+            "truck failed to evaluate the surface inside the face",
+        ))
     })?;
-    // Step 3: Section 4 on the composite surface, boundary nodes at the (ξ, η) grid nodes.
-    let composite = Composite { s: &surface, w: &w };
-    let side = |n: usize| (0..n).map(move |k| k as f64 / (n - 1) as f64);
-    let xi: [Vec<[f64; 2]>; 4] = [
-        side(nj).map(|t| [0.0, t]).collect(),
-        side(nj).map(|t| [1.0, t]).collect(),
-        side(ni).map(|t| [t, 0.0]).collect(),
-        side(ni).map(|t| [t, 1.0]).collect(),
-    ];
-    let mut result =
-        quietly(|| grid_surface(&composite, &xi, solver, place)).unwrap_or_else(|_| {
-            Err(Error::input(
-                place,
-                "truck failed to evaluate the surface inside the face",
-            ))
-        })?;
-    // The CAD (u, v) of every node; boundary nodes exactly on the CAD edges.
-    for q in result.uv.iter_mut() {
-        let p = w.point(q[0], q[1]);
-        *q = [p.x, p.y];
-    }
-    for e in Edge::ALL {
-        let (x, uv) = (&boundary.points[e.index()], &boundary.uv[e.index()]);
-        for (k, (p, q)) in x.iter().zip(uv).enumerate() {
-            let n = match e {
-                Edge::E1 => ni * k,
-                Edge::E2 => ni - 1 + ni * k,
-                Edge::E3 => k,
-                Edge::E4 => k + ni * (nj - 1),
-            };
-            for c in 0..3 {
-                result.grid.coords_mut()[c][n] = p[c];
-                result.initial.coords_mut()[c][n] = p[c];
-            }
-            result.uv[n] = *q;
-        }
-    }
     Ok(FaceGrid {
-        result,
+        result: r.result,
         corner_angles: boundary.angles.to_vec(),
         gap: boundary.gap,
-        uv_picard: Some(uvg.picard),
+        uv_picard: r.uv_picard,
     })
 }
 
@@ -186,7 +147,6 @@ fn trimmed(
 struct FaceBoundary {
     points: [Vec<Vec3>; 4],
     uv: [Vec<[f64; 2]>; 4],
-    uv_scaled: [Vec<[f64; 2]>; 4],
     scale: [f64; 2],
     angles: [f64; 4],
     gap: f64,
@@ -287,103 +247,11 @@ fn boundary(
         (points[a][ka], points[b][kb]) = (x, x);
         (uv[a][ka], uv[b][kb]) = (w, w);
     }
-    let uv_scaled = uv.clone().map(|e| {
-        e.iter()
-            .map(|p| [p[0] * scale[0], p[1] * scale[1]])
-            .collect()
-    });
     Ok(FaceBoundary {
         points,
         uv,
-        uv_scaled,
         scale,
         angles,
         gap: lp.gap,
     })
-}
-
-/// The (u, v) grid must not fold: every cell's corners turn counterclockwise. A corner
-/// angle of 180° (a face corner placed inside an edge) is degenerate, not folded: rounding
-/// may make it turn clockwise by a hair (|sin| below 1e-9).
-fn check_unfolded(g: &Grid2<2>, place: &str) -> Result<()> {
-    let (ni, nj) = (g.ni(), g.nj());
-    let (x, y) = (g.coord(0), g.coord(1));
-    let mut bad = Vec::new();
-    for j in 0..nj - 1 {
-        for i in 0..ni - 1 {
-            let n = [
-                i + ni * j,
-                i + 1 + ni * j,
-                i + 1 + ni * (j + 1),
-                i + ni * (j + 1),
-            ];
-            let folded = (0..4).any(|k| {
-                let (a, b, c) = (n[(k + 3) % 4], n[k], n[(k + 1) % 4]);
-                let (ux, uy) = (x[c] - x[b], y[c] - y[b]);
-                let (vx, vy) = (x[a] - x[b], y[a] - y[b]);
-                let cross = ux * vy - uy * vx;
-                let scale = (ux * ux + uy * uy).sqrt() * (vx * vx + vy * vy).sqrt();
-                cross.partial_cmp(&(-1e-9 * scale)) != Some(std::cmp::Ordering::Greater)
-                    || scale == 0.0
-            });
-            if folded {
-                bad.push((i, j));
-            }
-        }
-    }
-    if bad.is_empty() {
-        return Ok(());
-    }
-    Err(Error::Folded {
-        place: format!("{place}, (u, v) grid"),
-        count: bad.len(),
-        first: format!(
-            "cell {:?}: the face's parametrization (a Section 2 grid in the surface's (u, v) \
-             plane) folds",
-            bad[0]
-        ),
-    })
-}
-
-/// x(w(ξ, η)): the CAD surface over the face's parametrization from the unit square.
-struct Composite<'a> {
-    s: &'a CadSurface,
-    w: &'a HermiteSurface,
-}
-
-impl Surface for Composite<'_> {
-    fn eval(&self, xi: f64, eta: f64) -> SurfacePoint {
-        let w = self.w.eval(xi, eta);
-        let s = self.s.eval(w.x.x, w.x.y);
-        let (ua, va, ub, vb) = (w.xu.x, w.xu.y, w.xv.x, w.xv.y);
-        SurfacePoint {
-            x: s.x,
-            xu: s.xu * ua + s.xv * va,
-            xv: s.xu * ub + s.xv * vb,
-            xuu: s.xuu * (ua * ua)
-                + s.xuv * (2.0 * ua * va)
-                + s.xvv * (va * va)
-                + s.xu * w.xuu.x
-                + s.xv * w.xuu.y,
-            xuv: s.xuu * (ua * ub)
-                + s.xuv * (ua * vb + ub * va)
-                + s.xvv * (va * vb)
-                + s.xu * w.xuv.x
-                + s.xv * w.xuv.y,
-            xvv: s.xuu * (ub * ub)
-                + s.xuv * (2.0 * ub * vb)
-                + s.xvv * (vb * vb)
-                + s.xu * w.xvv.x
-                + s.xv * w.xvv.y,
-        }
-    }
-
-    fn point(&self, xi: f64, eta: f64) -> Vec3 {
-        let w = self.w.point(xi, eta);
-        self.s.point(w.x, w.y)
-    }
-
-    fn breaks(&self) -> (Vec<f64>, Vec<f64>) {
-        self.w.breaks()
-    }
 }

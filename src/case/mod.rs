@@ -14,11 +14,13 @@ pub mod refine;
 pub mod spec;
 pub mod surface;
 pub mod topology;
+pub mod topology3;
 pub mod volume;
+use crate::grid::topology::volume::Topology3;
 use crate::grid::topology::Topology;
 pub use spec::{
-    BlockKind, BlockSpec, Case, CurveSpec, DistributionSpec, EdgeSpec, OutputSpec, SideSpec,
-    SolverSpec, SurfaceSpec, TopoEdgeSpec, VertexSpec,
+    BlockKind, BlockSpec, Case, CurveSpec, DistributionSpec, EdgeSpec, FaceKind, FaceSpec,
+    OutputSpec, SideSpec, SolverSpec, SurfaceSpec, TopoEdgeSpec, VertexSpec,
 };
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -28,10 +30,31 @@ use std::sync::OnceLock;
 pub struct LoadedCase {
     pub path: PathBuf,
     pub case: Case,
-    /// The multi-block topology (cases with `[[edge]]` tables).
+    /// The multi-block topology (cases with `[[edge]]` tables and blocks).
     pub topology: Option<Topology>,
+    /// The volume topology (cases with `[[face]]` tables).
+    pub topology3: Option<Topology3>,
     /// The nodes of the topology's edges, computed once.
     nodes: OnceLock<Vec<Vec<Vec3>>>,
+    /// The `[[surface]]` tables, each built once when first used.
+    surfaces: SurfaceCache,
+}
+
+/// Built `[[surface]]` tables (see [`LoadedCase::named_surface`]).
+#[derive(Clone, Default)]
+struct SurfaceCache(OnceLock<Vec<OnceLock<std::sync::Arc<dyn ellipgrid_geometry::Surface>>>>);
+
+impl std::ops::Deref for SurfaceCache {
+    type Target = OnceLock<Vec<OnceLock<std::sync::Arc<dyn ellipgrid_geometry::Surface>>>>;
+    fn deref(&self) -> &Self::Target {
+        &self.0
+    }
+}
+
+impl std::fmt::Debug for SurfaceCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SurfaceCache")
+    }
 }
 
 /// An edge's node count within [`limits::MAX_NODES`] (so that chains of edges add up without
@@ -78,6 +101,13 @@ impl LoadedCase {
             budget_edge(&place, &e.name, e.n)?;
         }
         let topology = topology::build(&case, &place)?;
+        let topology3 = topology3::build3(&case, &place)?;
+        if let Some(t) = &topology3 {
+            for v in &t.volumes {
+                let at = format!("{place}: volume '{}'", v.name);
+                budget.add(&at, &v.dims, limits::BYTES_PER_NODE_3D)?;
+            }
+        }
         match &topology {
             Some(t) => {
                 for (b, blk) in t.blocks.iter().enumerate() {
@@ -96,9 +126,14 @@ impl LoadedCase {
             }
         }
         for (k, v) in case.volumes.iter().enumerate() {
+            if topology3.is_some() {
+                break; // counted above, from the faces
+            }
             let name = v.name.clone().unwrap_or_else(|| format!("volume{}", k + 1));
             let at = format!("{place}: volume '{name}'");
-            budget.add(&at, &[v.ni, v.nj, v.nk], limits::BYTES_PER_NODE_3D)?;
+            if let (Some(ni), Some(nj), Some(nk)) = (v.ni, v.nj, v.nk) {
+                budget.add(&at, &[ni, nj, nk], limits::BYTES_PER_NODE_3D)?;
+            }
         }
         budget.check_memory(&place)?;
         if topology.is_none() {
@@ -126,8 +161,18 @@ impl LoadedCase {
             path: path.to_path_buf(),
             case,
             topology,
+            topology3,
             nodes: OnceLock::new(),
+            surfaces: SurfaceCache::default(),
         })
+    }
+
+    /// The topology whose edges the case's `[[edge]]` tables are: the 2D one, or the faces'
+    /// of a volume topology.
+    pub fn edge_topology(&self) -> Option<&Topology> {
+        self.topology
+            .as_ref()
+            .or(self.topology3.as_ref().map(|t| &t.faces))
     }
 
     /// "file: block 'name'" for messages.
@@ -343,6 +388,21 @@ impl LoadedCase {
             }
             CurveSpec::Spline { points } => {
                 Box::new(geo::Spline::new(pts(points)?).map_err(geo_err)?)
+            }
+            CurveSpec::OnSurface { surface, uv } => {
+                let s = self.named_surface(surface, at)?;
+                let uv = uv
+                    .iter()
+                    .enumerate()
+                    .map(|(k, p)| match p[..] {
+                        [u, v] if u.is_finite() && v.is_finite() => Ok((u, v)),
+                        _ => Err(Error::input(
+                            at,
+                            format!("uv[{k}]: expected [u, v] with finite values"),
+                        )),
+                    })
+                    .collect::<Result<Vec<_>>>()?;
+                Box::new(geo::SurfaceLine::new(s, uv).map_err(geo_err)?)
             }
             CurveSpec::Naca4 {
                 code,

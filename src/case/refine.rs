@@ -116,19 +116,21 @@ impl LoadedCase {
                      volume's twelve edges instead",
                 ));
             }
-            let dims = [v.ni, v.nj, v.nk];
+            let given = [v.ni, v.nj, v.nk];
             let edges = [
                 &mut v.e1, &mut v.e2, &mut v.e3, &mut v.e4, &mut v.e5, &mut v.e6, &mut v.e7,
                 &mut v.e8, &mut v.e9, &mut v.e10, &mut v.e11, &mut v.e12,
             ];
             for (e, spec) in edges.into_iter().enumerate() {
-                if let Some(spec) = spec {
-                    refine_edge(spec, dims[e / 4], level, &format!("{at}, edge E{}", e + 1))?;
+                if let (Some(spec), Some(n)) = (spec, given[e / 4]) {
+                    refine_edge(spec, n, level, &format!("{at}, edge E{}", e + 1))?;
                 }
             }
-            v.ni = count(v.ni, &at)?;
-            v.nj = count(v.nj, &at)?;
-            v.nk = count(v.nk, &at)?;
+            // (a volume of a volume topology takes its counts from its faces' edges, refined
+            // above; given counts are checked against them)
+            v.ni = v.ni.map(|n| count(n, &at)).transpose()?;
+            v.nj = v.nj.map(|n| count(n, &at)).transpose()?;
+            v.nk = v.nk.map(|n| count(n, &at)).transpose()?;
         }
         LoadedCase::from_case(case, &self.path)
     }

@@ -32,6 +32,12 @@ pub struct Case {
     /// Volume blocks (`[[volume]]`, see `volume::case3d`), written after the blocks.
     #[serde(rename = "volume", default)]
     pub volumes: Vec<VolumeSpec>,
+    /// Named faces of a volume topology (`[[face]]`), shared by the volumes that name them.
+    #[serde(rename = "face", default)]
+    pub faces: Vec<FaceSpec>,
+    /// Named surfaces (`[[surface]]`) that faces lie on and edge curves run along.
+    #[serde(rename = "surface", default)]
+    pub surfaces: Vec<NamedSurface>,
 }
 
 /// `[output]`: files to write and the Plot3D flavour.
@@ -194,6 +200,80 @@ pub struct TopoEdgeSpec {
     pub family: Option<String>,
 }
 
+/// `[[face]]`: a named face of a volume topology, bounded by four sides of named edges (as
+/// the blocks of a 2D topology), shared by the volumes that name it.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FaceSpec {
+    pub name: String,
+    /// How the face is gridded: "tfi" (default: the Coons patch of its sides), "minimal"
+    /// (the Section 3 system: a soap film spanned by the sides; a plane if they are planar)
+    /// or "surface" (Section 4 on the named `surface`).
+    #[serde(default)]
+    pub kind: FaceKind,
+    /// The `[[surface]]` a `kind = "surface"` face lies on.
+    pub surface: Option<String>,
+    /// Sides at which the face's grid is orthogonal to its edges (Section 2.4), e.g.
+    /// `["E3"]` (minimal and surface faces).
+    #[serde(default)]
+    pub orthogonal: Vec<String>,
+    /// Boundary-patch family in the connectivity file (default: the face's name).
+    pub family: Option<String>,
+    #[serde(rename = "E1")]
+    pub e1: Option<SideSpec>,
+    #[serde(rename = "E2")]
+    pub e2: Option<SideSpec>,
+    #[serde(rename = "E3")]
+    pub e3: Option<SideSpec>,
+    #[serde(rename = "E4")]
+    pub e4: Option<SideSpec>,
+}
+
+impl FaceSpec {
+    /// The four sides E1..E4.
+    pub fn sides(&self) -> [&Option<SideSpec>; 4] {
+        [&self.e1, &self.e2, &self.e3, &self.e4]
+    }
+}
+
+/// How a face of a volume topology is gridded.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FaceKind {
+    /// The Coons patch (transfinite interpolation) of the four sides, blended with their
+    /// straight-line parameters [39, 40].
+    #[default]
+    Tfi,
+    /// The Poisson system [24] with x ∈ R³ (Section 3): a minimal surface, planar when the
+    /// sides are.
+    Minimal,
+    /// Section 4 on a named surface.
+    Surface,
+}
+
+/// `[[surface]]`: a named surface, `name` beside the keys of a [`SurfaceSpec`]
+/// (`type = "hermite_net"`, …).
+#[derive(Clone, Debug)]
+pub struct NamedSurface {
+    pub name: String,
+    pub surface: SurfaceSpec,
+}
+
+impl<'de> Deserialize<'de> for NamedSurface {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        use serde::de::Error as _;
+        let mut t = toml::Table::deserialize(d)?;
+        let name = match t.remove("name") {
+            Some(toml::Value::String(s)) => s,
+            Some(_) => return Err(D::Error::custom("[[surface]]: name must be a string")),
+            None => return Err(D::Error::custom("[[surface]] needs a name")),
+        };
+        let surface = SurfaceSpec::deserialize(toml::Value::Table(t))
+            .map_err(|e| D::Error::custom(format!("[[surface]] '{name}': {e}")))?;
+        Ok(NamedSurface { name, surface })
+    }
+}
+
 /// The kind of a block.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -268,6 +348,9 @@ pub enum CurveSpec {
     /// The edge's nodes themselves; their count must match the block and `distribution` is
     /// not used.
     Nodes { points: Vec<Vec<f64>> },
+    /// A curve on a `[[surface]]`: the polyline through parameter points `uv` ([u, v] each,
+    /// at least two) mapped onto the surface (e.g. `[[0, 0], [1, 0]]`: the side v = 0).
+    OnSurface { surface: String, uv: Vec<Vec<f64>> },
 }
 
 fn one() -> f64 {
@@ -407,10 +490,11 @@ pub enum SurfaceSpec {
 pub struct VolumeSpec {
     /// Name used in messages and outputs (default `volume<k>`).
     pub name: Option<String>,
-    /// Nodes along i (on E1–E4), j (E5–E8), k (E9–E12).
-    pub ni: usize,
-    pub nj: usize,
-    pub nk: usize,
+    /// Nodes along i (on E1–E4), j (E5–E8), k (E9–E12); in a volume topology optional (the
+    /// faces give them; checked if given).
+    pub ni: Option<usize>,
+    pub nj: Option<usize>,
+    pub nk: Option<usize>,
     /// Linear solver of each Picard step: "auto" (default: the 3D multigrid from
     /// [`crate::solve::select::AUTO_MULTIGRID_NODES`] nodes, else Bi-CGSTAB/ILU(0)), "multigrid",
     /// "bicgstab" or "direct" (small blocks).
@@ -452,6 +536,19 @@ pub struct VolumeSpec {
     pub e11: Option<EdgeSpec>,
     #[serde(rename = "E12")]
     pub e12: Option<EdgeSpec>,
+    /// In a volume topology: the names of the faces F1 … F6 (`[[face]]` tables).
+    #[serde(rename = "F1")]
+    pub f1: Option<String>,
+    #[serde(rename = "F2")]
+    pub f2: Option<String>,
+    #[serde(rename = "F3")]
+    pub f3: Option<String>,
+    #[serde(rename = "F4")]
+    pub f4: Option<String>,
+    #[serde(rename = "F5")]
+    pub f5: Option<String>,
+    #[serde(rename = "F6")]
+    pub f6: Option<String>,
 }
 
 fn auto() -> String {
@@ -471,6 +568,22 @@ pub struct FacesFile {
 }
 
 impl VolumeSpec {
+    /// The names of faces F1 … F6 (a volume of a volume topology).
+    pub fn face_names(&self) -> [&Option<String>; 6] {
+        [&self.f1, &self.f2, &self.f3, &self.f4, &self.f5, &self.f6]
+    }
+
+    /// (ni, nj, nk) of a volume given by its edges or a faces file: all three are needed.
+    pub fn dims(&self, place: &str) -> Result<[usize; 3]> {
+        match (self.ni, self.nj, self.nk) {
+            (Some(a), Some(b), Some(c)) => Ok([a, b, c]),
+            _ => Err(Error::input(
+                place,
+                "a volume given by edges or a faces file needs ni, nj and nk",
+            )),
+        }
+    }
+
     pub(crate) fn edge_specs(&self) -> [&Option<EdgeSpec>; 12] {
         [
             &self.e1, &self.e2, &self.e3, &self.e4, &self.e5, &self.e6, &self.e7, &self.e8,

@@ -35,7 +35,11 @@ impl LoadedCase {
     }
 
     /// A surface from its spec (`place` names it in errors).
-    fn build_surface(&self, spec: &SurfaceSpec, place: &str) -> Result<Box<dyn Surface>> {
+    pub(crate) fn build_surface(
+        &self,
+        spec: &SurfaceSpec,
+        place: &str,
+    ) -> Result<Box<dyn Surface>> {
         let place = place.to_string();
         let geo_err = |source| Error::Geometry {
             place: place.clone(),

@@ -9,7 +9,8 @@ use ellipgrid_geometry::Vec3;
 use ellipgrid_geometry::{self as geo, Curve};
 
 /// The topology of a case with `[[edge]]` tables (None for a case of independent blocks);
-/// every structural error names the file, block and edge.
+/// every structural error names the file, block and edge. Cases with `[[face]]` tables are
+/// volume topologies ([`super::topology3`]).
 pub(super) fn build(case: &Case, place: &str) -> Result<Option<Topology>> {
     if case.edges.is_empty() {
         if !case.vertices.is_empty() {
@@ -20,37 +21,10 @@ pub(super) fn build(case: &Case, place: &str) -> Result<Option<Topology>> {
         }
         return Ok(None);
     }
-    let vertices: Vec<String> = case.vertices.iter().map(|v| v.name.clone()).collect();
-    let vertex = |name: &str, e: &str| {
-        vertices.iter().position(|v| v == name).ok_or_else(|| {
-            Error::input(
-                format!("{place}: edge '{e}'"),
-                format!("no vertex named '{name}'"),
-            )
-        })
-    };
-    let mut edges = Vec::new();
-    for e in &case.edges {
-        let floating = match e.interface.as_deref() {
-            None | Some("fixed") => false,
-            Some("floating") => true,
-            Some(other) => {
-                return Err(Error::input(
-                    format!("{place}: edge '{}'", e.name),
-                    format!("interface = '{other}': expected \"fixed\" or \"floating\""),
-                ))
-            }
-        };
-        edges.push(TopoEdge {
-            name: e.name.clone(),
-            from: vertex(&e.from, &e.name)?,
-            to: vertex(&e.to, &e.name)?,
-            n: e.n,
-            orthogonal: e.orthogonal,
-            floating,
-            family: e.family.clone().unwrap_or_else(|| e.name.clone()),
-        });
+    if !case.faces.is_empty() {
+        return Ok(None);
     }
+    let (vertices, edges) = topo_edges(case, place)?;
     let mut blocks = Vec::new();
     for (k, b) in case.blocks.iter().enumerate() {
         let name = b.name.clone().unwrap_or_else(|| format!("block{}", k + 1));
@@ -62,29 +36,7 @@ pub(super) fn build(case: &Case, place: &str) -> Result<Option<Topology>> {
                  tables, blocks are planar or minimal",
             ));
         }
-        let mut sides: [Vec<(String, Option<bool>)>; 4] = Default::default();
-        for (e, side) in Edge::ALL.into_iter().zip(b.sides()) {
-            match side {
-                Some(SideSpec::Names(names)) if !names.is_empty() => {
-                    sides[e.index()] = names
-                        .iter()
-                        .map(|n| match n.strip_prefix('-') {
-                            Some(rest) => (rest.to_string(), Some(true)),
-                            None => (n.clone(), None),
-                        })
-                        .collect();
-                }
-                _ => {
-                    return Err(Error::input(
-                        at,
-                        format!(
-                            "side {e}: in a case with [[edge]] tables, each block side names \
-                             its edges (E1 = \"name\" or E1 = [\"a\", \"b\"])"
-                        ),
-                    ))
-                }
-            }
-        }
+        let sides = side_names(b.sides(), &at)?;
         let orthogonal = crate::elliptic::orthogonal::parse_edges(&b.orthogonal, &at)?;
         blocks.push(BlockSides {
             name,
@@ -130,11 +82,79 @@ pub(super) fn build(case: &Case, place: &str) -> Result<Option<Topology>> {
     Ok(Some(topo))
 }
 
+/// The vertex names and the edges of a case's `[[vertex]]` and `[[edge]]` tables.
+pub(super) fn topo_edges(case: &Case, place: &str) -> Result<(Vec<String>, Vec<TopoEdge>)> {
+    let vertices: Vec<String> = case.vertices.iter().map(|v| v.name.clone()).collect();
+    let vertex = |name: &str, e: &str| {
+        vertices.iter().position(|v| v == name).ok_or_else(|| {
+            Error::input(
+                format!("{place}: edge '{e}'"),
+                format!("no vertex named '{name}'"),
+            )
+        })
+    };
+    let mut edges = Vec::new();
+    for e in &case.edges {
+        let floating = match e.interface.as_deref() {
+            None | Some("fixed") => false,
+            Some("floating") => true,
+            Some(other) => {
+                return Err(Error::input(
+                    format!("{place}: edge '{}'", e.name),
+                    format!("interface = '{other}': expected \"fixed\" or \"floating\""),
+                ))
+            }
+        };
+        edges.push(TopoEdge {
+            name: e.name.clone(),
+            from: vertex(&e.from, &e.name)?,
+            to: vertex(&e.to, &e.name)?,
+            n: e.n,
+            orthogonal: e.orthogonal,
+            floating,
+            family: e.family.clone().unwrap_or_else(|| e.name.clone()),
+        });
+    }
+    Ok((vertices, edges))
+}
+
+/// Edge names along one side, each with its forced direction (`Some(true)`: `-name`).
+type NamedChain = Vec<(String, Option<bool>)>;
+
+/// The edge names of four sides (E1..E4) with their forced directions (`-name`: reversed);
+/// every side must name its edges.
+pub(super) fn side_names(sides: [&Option<SideSpec>; 4], at: &str) -> Result<[NamedChain; 4]> {
+    let mut out: [NamedChain; 4] = Default::default();
+    for (e, side) in Edge::ALL.into_iter().zip(sides) {
+        match side {
+            Some(SideSpec::Names(names)) if !names.is_empty() => {
+                out[e.index()] = names
+                    .iter()
+                    .map(|n| match n.strip_prefix('-') {
+                        Some(rest) => (rest.to_string(), Some(true)),
+                        None => (n.clone(), None),
+                    })
+                    .collect();
+            }
+            _ => {
+                return Err(Error::input(
+                    at,
+                    format!(
+                        "side {e}: in a case with [[edge]] tables, each side names its edges \
+                         (E1 = \"name\" or E1 = [\"a\", \"b\"])"
+                    ),
+                ))
+            }
+        }
+    }
+    Ok(out)
+}
+
 impl LoadedCase {
     /// The nodes of every topology edge in its own direction, ends exactly on the vertices;
     /// planar edges that cross are errors.
     pub fn topology_nodes(&self) -> Result<Vec<Vec<Vec3>>> {
-        let Some(topo) = &self.topology else {
+        let Some(topo) = self.edge_topology() else {
             return Ok(Vec::new());
         };
         if let Some(n) = self.nodes.get() {
@@ -224,7 +244,8 @@ impl LoadedCase {
             }
             all.push(p);
         }
-        let planar = self.case.blocks.iter().all(|b| b.kind == BlockKind::Planar);
+        let planar =
+            self.topology.is_some() && self.case.blocks.iter().all(|b| b.kind == BlockKind::Planar);
         if planar {
             let flat: Vec<Vec<[f64; 2]>> = all
                 .iter()

@@ -14,7 +14,7 @@
 //! Files: this one (the `[[volume]]` table, faces from edges or from a file), [`coons`] (the
 //! Coons patches of the faces), [`run`] (generation, start grids and smoothing of volume blocks).
 
-use crate::algebraic::coons::{coons_eval, coons_face, coons_params, edge_of, is_planar};
+use crate::algebraic::coons::{coons_eval, coons_face, coons_params, is_planar};
 use crate::algebraic::transform::ParamGrid;
 use crate::algebraic::ControlKind;
 use crate::case::spec::VolumeSpec;
@@ -22,38 +22,22 @@ use crate::case::LoadedCase;
 use crate::elliptic::domain::grid_block;
 use crate::elliptic::picard::PicardParams;
 use crate::elliptic::wall::correct_side_faces;
-use crate::grid::faces::parse_face;
+use crate::grid::faces::{edge_of, parse_face, Orient};
 use crate::grid::faces::{face_dims, Faces, FACE_NAMES};
 use crate::io::Block;
 use crate::solve::direct::DirectLu;
 use crate::{Error, Grid2, Result};
 
 /// Maps a stored face grid onto the face orientation by an `orient` string (see
-/// [`FacesFile::orient`]).
+/// [`crate::case::spec::FacesFile::orient`] and [`Orient`]).
 fn reorient(g: &Grid2<3>, spec: &str, want: [usize; 2], at: &str) -> Result<Grid2<3>> {
-    let bad = || {
+    let o = Orient::parse(spec).ok_or_else(|| {
         Error::input(
             at,
             format!("orient '{spec}': expected ab, ba, -ab, a-b, -a-b, -ba, b-a or -b-a"),
         )
-    };
-    let mut letters = Vec::new();
-    let mut neg = false;
-    for ch in spec.chars() {
-        match ch {
-            '-' if !neg => neg = true,
-            'a' | 'b' => {
-                letters.push((ch, neg));
-                neg = false;
-            }
-            _ => return Err(bad()),
-        }
-    }
-    if letters.len() != 2 || letters[0].0 == letters[1].0 || neg {
-        return Err(bad());
-    }
-    let sizes = |l: char| if l == 'a' { want[0] } else { want[1] };
-    let (np, nq) = (sizes(letters[0].0), sizes(letters[1].0));
+    })?;
+    let [np, nq] = o.face_dims(want);
     if (g.ni(), g.nj()) != (np, nq) {
         return Err(Error::input(
             at,
@@ -64,17 +48,7 @@ fn reorient(g: &Grid2<3>, spec: &str, want: [usize; 2], at: &str) -> Result<Grid
             ),
         ));
     }
-    Ok(Grid2::<3>::from_fn(want[0], want[1], |a, b| {
-        let idx = |(l, r): (char, bool), n: usize| {
-            let v = if l == 'a' { a } else { b };
-            if r {
-                n - 1 - v
-            } else {
-                v
-            }
-        };
-        g.point(idx(letters[0], np), idx(letters[1], nq))
-    }))
+    Ok(o.to_block_face(g))
 }
 
 /// "file: volume 'name'" of volume k.
@@ -94,7 +68,7 @@ pub fn volume_name(case: &LoadedCase, k: usize) -> String {
 pub fn volume_faces(case: &LoadedCase, k: usize, params: &PicardParams) -> Result<Faces> {
     let v = &case.case.volumes[k];
     let place = volume_place(case, k);
-    let dims = [v.ni, v.nj, v.nk];
+    let dims = v.dims(&place)?;
     if dims.iter().any(|&n| n < 3) {
         return Err(Error::input(
             &place,

@@ -74,10 +74,12 @@ pub struct Loaded {
     pub blocks: Vec<(String, Block)>,
     pub format: Option<Plot3dFormat>,
     pub iblank: Option<Vec<Vec<i32>>>,
-    /// The multi-block topology of a case file.
+    /// The 2D multi-block topology of a case file (for pictures of it).
     pub topology: Option<ellipgrid::grid::topology::Topology>,
-    /// The connectivity a CGNS input holds.
+    /// The connectivity a CGNS input or a multi-block case file holds.
     pub conn: Option<ConnFile>,
+    /// True for a case file (its topology gives the connectivity; `--conn` is refused).
+    pub case: bool,
 }
 
 /// Reads a grid input: a case file (`.toml`, gridded now; a folded grid is an error unless
@@ -107,7 +109,8 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
             format: None,
             iblank: None,
             topology: gen.topology,
-            conn: None,
+            conn: gen.connectivity,
+            case: true,
         });
     }
     if ext == "vts" || ext == "vtm" {
@@ -126,6 +129,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
             iblank: None,
             topology: None,
             conn: None,
+            case: false,
         });
     }
     if ext == "cgns" {
@@ -138,6 +142,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
                 iblank: None,
                 topology: None,
                 conn: Some(conn),
+                case: false,
             });
         }
         #[cfg(not(feature = "cgns"))]
@@ -163,6 +168,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
         iblank: file.iblank,
         topology: None,
         conn: None,
+        case: false,
     })
 }
 
@@ -255,14 +261,11 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
 /// The connectivity of the input: a case's topology, `--conn`, the `.conn` beside the input,
 /// or every block side a patch of its own.
 fn connectivity(a: &ConvertArgs, input: &Loaded) -> Result<ConnFile> {
-    if let Some(t) = &input.topology {
-        if a.conn.is_some() {
-            return Err(Error::input(
-                "--conn",
-                "a case file's topology gives the connectivity",
-            ));
-        }
-        return Ok(ellipgrid::io::connectivity::from_topology(t));
+    if input.case && input.conn.is_some() && a.conn.is_some() {
+        return Err(Error::input(
+            "--conn",
+            "a case file's topology gives the connectivity",
+        ));
     }
     if let (Some(c), None) = (&input.conn, &a.conn) {
         return Ok(c.clone());

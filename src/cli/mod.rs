@@ -237,15 +237,17 @@ fn run(
             }
         })?);
         if !quiet {
+            print::faces(&g.report.faces);
             g.report.volumes.iter().for_each(print::volume);
             print::interfaces(&g.report.interfaces);
+            print::face_interfaces(&g.report.face_interfaces);
         }
         let fold = g.report.fold_error();
         match fold {
             Some(e) if !allow_folded => return Err(e),
             _ => {}
         }
-        let written = job::write_outputs_with(&g.blocks, g.topology.as_ref(), &paths, &fmt)?;
+        let written = job::write_outputs_with(&g.blocks, g.connectivity.as_ref(), &paths, &fmt)?;
         g.report.outputs = written.iter().map(|p| p.display().to_string()).collect();
         messages.extend(written.iter().map(|p| format!("wrote {}", p.display())));
         Ok(fold)

@@ -50,24 +50,89 @@ pub fn block(b: &BlockReport) {
 
 /// Prints the smoothness of the grid across every interior edge.
 pub fn interfaces(list: &[ellipgrid::job::multiblock::InterfaceReport]) {
-    if list.is_empty() {
+    smoothness_table(
+        "edge",
+        "blocks",
+        list.iter().map(|f| {
+            (
+                f.edge.as_str(),
+                format!("{} | {}", f.blocks[0], f.blocks[1]),
+                &f.smoothness,
+                if f.floating { "  (floating)" } else { "" },
+            )
+        }),
+    );
+}
+
+/// Prints the smoothness of the grid across every interior face of a volume topology.
+pub fn face_interfaces(list: &[ellipgrid::job::multivolume::FaceInterfaceReport]) {
+    smoothness_table(
+        "face",
+        "volumes",
+        list.iter().map(|f| {
+            (
+                f.face.as_str(),
+                format!("{} | {}", f.volumes[0], f.volumes[1]),
+                &f.smoothness,
+                "",
+            )
+        }),
+    );
+}
+
+/// One line per interface: its name, the two blocks, kink and spacing ratio, a note.
+fn smoothness_table<'a>(
+    what: &str,
+    between: &str,
+    rows: impl ExactSizeIterator<
+        Item = (
+            &'a str,
+            String,
+            &'a ellipgrid::quality::interface::InterfaceSmoothness,
+            &'a str,
+        ),
+    >,
+) {
+    if rows.len() == 0 {
         return;
     }
     println!("interfaces: kink of the crossing grid lines (deg) and first-spacing ratio");
     println!(
         "  {:<16} {:<24} {:>9} {:>9} {:>9} {:>9}",
-        "edge", "blocks", "kink max", "mean", "ratio max", "mean"
+        what, between, "kink max", "mean", "ratio max", "mean"
     );
-    for f in list {
+    for (name, pair, s, note) in rows {
         println!(
-            "  {:<16} {:<24} {:>9.3} {:>9.3} {:>9.4} {:>9.4}{}",
-            f.edge,
-            format!("{} | {}", f.blocks[0], f.blocks[1]),
-            f.smoothness.kink_max_deg,
-            f.smoothness.kink_mean_deg,
-            f.smoothness.spacing_ratio_max,
-            f.smoothness.spacing_ratio_mean,
-            if f.floating { "  (floating)" } else { "" }
+            "  {:<16} {:<24} {:>9.3} {:>9.3} {:>9.4} {:>9.4}{note}",
+            name, pair, s.kink_max_deg, s.kink_mean_deg, s.spacing_ratio_max, s.spacing_ratio_mean,
+        );
+    }
+}
+
+/// Prints one line per face of a volume topology: kind, size, time, solve, folding.
+pub fn faces(list: &[ellipgrid::job::multivolume::FaceReport]) {
+    if list.is_empty() {
+        return;
+    }
+    println!("faces:");
+    for f in list {
+        let solve = match &f.picard {
+            Some(p) => format!(
+                ", {} Picard steps{}",
+                p.steps,
+                if p.converged { "" } else { " NOT converged" }
+            ),
+            None => String::new(),
+        };
+        println!(
+            "  {:<16} {:<8} {:>4} × {:<4} {:.3} s{solve}, min scaled Jacobian {:.3}, folded cells {}",
+            f.name,
+            format!("{:?}", f.kind).to_lowercase(),
+            f.ni,
+            f.nj,
+            f.seconds,
+            f.quality.scaled_jacobian_min,
+            f.quality.folded_cells
         );
     }
 }

@@ -242,6 +242,128 @@ impl Faces {
     }
 }
 
+/// Position of a block edge (0-based, E1 = 0): the edge along axis `d` through block node `n`
+/// (at the low or high end of the two other axes).
+pub fn edge_of(d: usize, n: [usize; 3], dims: [usize; 3]) -> usize {
+    let o: Vec<usize> = (0..3).filter(|&a| a != d).collect();
+    let hi = |a: usize| usize::from(n[a] == dims[a] - 1 && n[a] > 0);
+    4 * d + hi(o[0]) + 2 * hi(o[1])
+}
+
+/// The four block edges (0-based) bounding face `f`, as the sides of the face's (a, b) index
+/// square: along a at b = 0, along a at b = end, along b at a = 0, along b at a = end (the
+/// order of a 2D block's E3, E4, E1, E2).
+pub fn face_edges(f: usize) -> [usize; 4] {
+    let dims = [2, 2, 2];
+    let (ta, tb) = tangents(f);
+    [
+        edge_of(ta, block_node(f, 0, 0, dims), dims),
+        edge_of(ta, block_node(f, 0, 1, dims), dims),
+        edge_of(tb, block_node(f, 0, 0, dims), dims),
+        edge_of(tb, block_node(f, 1, 0, dims), dims),
+    ]
+}
+
+/// How a face grid's own indices (p, q) run along a block face's indices (a, b): p runs along
+/// b if `transpose` (else along a), q along the other; `rev_p`, `rev_q` reverse them. The
+/// eight symmetries of the index square; the `orient` strings of a faces file ("ab", "-ba",
+/// …) name the same eight.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Orient {
+    pub transpose: bool,
+    pub rev_p: bool,
+    pub rev_q: bool,
+}
+
+impl Orient {
+    /// p = a, q = b.
+    pub const IDENTITY: Orient = Orient {
+        transpose: false,
+        rev_p: false,
+        rev_q: false,
+    };
+
+    /// The eight orientations, the identity first.
+    pub fn all() -> [Orient; 8] {
+        std::array::from_fn(|m| Orient {
+            transpose: m & 4 != 0,
+            rev_p: m & 1 != 0,
+            rev_q: m & 2 != 0,
+        })
+    }
+
+    /// Parses "ab", "ba", "-ab", "a-b", "-a-b", "-ba", "b-a", "-b-a": the letters name the
+    /// block-face index along the face's p and q, a "-" before a letter reverses it.
+    pub fn parse(spec: &str) -> Option<Orient> {
+        let mut letters = Vec::new();
+        let mut neg = false;
+        for ch in spec.chars() {
+            match ch {
+                '-' if !neg => neg = true,
+                'a' | 'b' => {
+                    letters.push((ch, neg));
+                    neg = false;
+                }
+                _ => return None,
+            }
+        }
+        match letters[..] {
+            [(p, rp), (q, rq)] if p != q && !neg => Some(Orient {
+                transpose: p == 'b',
+                rev_p: rp,
+                rev_q: rq,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The face's node counts (np, nq) from the block face's (na, nb).
+    pub fn face_dims(self, [na, nb]: [usize; 2]) -> [usize; 2] {
+        if self.transpose {
+            [nb, na]
+        } else {
+            [na, nb]
+        }
+    }
+
+    /// The block face's node counts (na, nb) from the face's (np, nq).
+    pub fn block_dims(self, [np, nq]: [usize; 2]) -> [usize; 2] {
+        self.face_dims([np, nq])
+    }
+
+    /// Face node (p, q) of block-face node (a, b); `face` = the face's (np, nq).
+    #[inline]
+    pub fn face_node(self, a: usize, b: usize, face: [usize; 2]) -> [usize; 2] {
+        let (u, v) = if self.transpose { (b, a) } else { (a, b) };
+        [
+            if self.rev_p { face[0] - 1 - u } else { u },
+            if self.rev_q { face[1] - 1 - v } else { v },
+        ]
+    }
+
+    /// Block-face node (a, b) of face node (p, q) (the inverse of [`Orient::face_node`]).
+    #[inline]
+    pub fn block_face_node(self, p: usize, q: usize, face: [usize; 2]) -> [usize; 2] {
+        let u = if self.rev_p { face[0] - 1 - p } else { p };
+        let v = if self.rev_q { face[1] - 1 - q } else { q };
+        if self.transpose {
+            [v, u]
+        } else {
+            [u, v]
+        }
+    }
+
+    /// The face grid `g` (np × nq) seen in block-face indices (na × nb).
+    pub fn to_block_face(self, g: &Grid2<3>) -> Grid2<3> {
+        let face = [g.ni(), g.nj()];
+        let [na, nb] = self.block_dims(face);
+        Grid2::<3>::from_fn(na, nb, |a, b| {
+            let [p, q] = self.face_node(a, b, face);
+            g.point(p, q)
+        })
+    }
+}
+
 /// Parses a face name "F1" … "F6" into 0 … 5.
 pub fn parse_face(s: &str) -> Option<usize> {
     FACE_NAMES
@@ -305,6 +427,26 @@ mod tests {
             }
         }
         assert_eq!(f.edge(8).len(), 6);
+        // A face cut out in any orientation comes back in block-face indices.
+        for o in Orient::all() {
+            let stored =
+                Grid2::<3>::from_fn(o.face_dims([5, 6])[0], o.face_dims([5, 6])[1], |p, q| {
+                    let [a, b] = o.block_face_node(p, q, o.face_dims([5, 6]));
+                    f.face(2).point(a, b)
+                });
+            assert_eq!(&o.to_block_face(&stored), f.face(2), "{o:?}");
+        }
+        assert_eq!(face_edges(2), [0, 2, 8, 9]);
+        assert_eq!(face_edges(4), [0, 1, 4, 5]);
+        assert_eq!(
+            Orient::parse("-ba"),
+            Some(Orient {
+                transpose: true,
+                rev_p: true,
+                rev_q: false
+            })
+        );
+        assert_eq!(Orient::parse("aa"), None);
         assert_eq!(f.edge(8)[2], warped(0, 0, 2));
     }
 

@@ -15,8 +15,10 @@
 //! reversed interface has b's first index above its last. Interfaces and patches together
 //! cover every block side.
 
+use crate::grid::faces::{block_node, face_dims};
+use crate::grid::topology::volume::{Topology3, VolumeSide};
 use crate::grid::topology::{SideRange, Topology};
-use crate::io::{write_atomic, Block};
+use crate::io::write_atomic;
 use crate::{Error, Result};
 use std::path::Path;
 
@@ -33,17 +35,6 @@ pub struct ConnFile {
 
 /// One side range: 1-based block, first node, last node.
 pub type Range = (usize, [usize; 3], [usize; 3]);
-
-/// Writes the connectivity of `topo` (atomically); `blocks` are the written grids, in order.
-pub fn write(path: &Path, topo: &Topology, blocks: &[(String, Block)]) -> Result<()> {
-    if blocks.len() < topo.blocks.len() {
-        return Err(Error::input(
-            path.display().to_string(),
-            "the connectivity needs every block of the topology",
-        ));
-    }
-    write_file(path, &from_topology(topo))
-}
 
 /// The connectivity of a topology as a file holds it: side a of each interface with growing
 /// indices, b following a's node order; families numbered in order of first use.
@@ -76,6 +67,57 @@ pub fn from_topology(topo: &Topology) -> ConnFile {
         let (lo, hi) = (r.start.min(r.end), r.start.max(r.end));
         let id = 1 + families.iter().position(|f| f == &p.family).unwrap_or(0);
         out.patches.push((one(r, lo, hi), id));
+    }
+    out.families = families
+        .into_iter()
+        .enumerate()
+        .map(|(k, f)| (k + 1, f))
+        .collect();
+    out
+}
+
+/// The connectivity of a volume topology as a file holds it: per interface face, side a the
+/// face in its first volume with growing indices, side b the same face in the second volume
+/// from the node matching a's first node to the one matching its last; per boundary face, its
+/// range and family (numbered in order of first use).
+pub fn from_topology3(topo: &Topology3) -> ConnFile {
+    let c = topo.connectivity();
+    let mut families: Vec<String> = Vec::new();
+    for p in &c.patches {
+        if !families.contains(&p.family) {
+            families.push(p.family.clone());
+        }
+    }
+    let one = |v: usize, from: [usize; 3], to: [usize; 3]| -> Range {
+        (v + 1, from.map(|x| x + 1), to.map(|x| x + 1))
+    };
+    // The block nodes of the volume-face corners (0, 0) and (end, end) of side s.
+    let span = |s: VolumeSide| {
+        let dims = topo.volumes[s.volume].dims;
+        let [na, nb] = face_dims(s.side, dims);
+        (
+            block_node(s.side, 0, 0, dims),
+            block_node(s.side, na - 1, nb - 1, dims),
+        )
+    };
+    let mut out = ConnFile::default();
+    for f in &c.interfaces {
+        let (a0, a1) = span(f.a);
+        // The face nodes (p, q) at a's corners, then where b has them.
+        let ua = topo.volumes[f.a.volume].faces[f.a.side];
+        let fd = topo.face_dims(f.face);
+        let [na, nb] = face_dims(f.a.side, topo.volumes[f.a.volume].dims);
+        let [p0, q0] = ua.orient.face_node(0, 0, fd);
+        let [p1, q1] = ua.orient.face_node(na - 1, nb - 1, fd);
+        let b0 = topo.volume_node(f.b.volume, f.b.side, p0, q0);
+        let b1 = topo.volume_node(f.b.volume, f.b.side, p1, q1);
+        out.interfaces
+            .push([one(f.a.volume, a0, a1), one(f.b.volume, b0, b1)]);
+    }
+    for p in &c.patches {
+        let (lo, hi) = span(p.side);
+        let id = 1 + families.iter().position(|f| f == &p.family).unwrap_or(0);
+        out.patches.push((one(p.side.volume, lo, hi), id));
     }
     out.families = families
         .into_iter()

@@ -4,6 +4,7 @@
 //! output file being written.
 
 pub mod multiblock;
+pub mod multivolume;
 pub mod smooth;
 pub mod verify;
 pub mod volume;
@@ -13,6 +14,7 @@ use crate::case::{BlockKind, LoadedCase};
 use crate::elliptic::orthogonal::grid_block_with;
 use crate::elliptic::picard::PicardInfo;
 use crate::grid::Grid2;
+use crate::io::connectivity::ConnFile;
 use crate::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
 use crate::io::{gltf, obj, vtk, Block};
 use crate::quality::{self, QualityReport};
@@ -91,6 +93,12 @@ pub struct RunReport {
     /// Volume blocks (`[[volume]]`), after the blocks.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub volumes: Vec<crate::job::volume::VolumeReport>,
+    /// The faces of a volume topology (`[[face]]`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub faces: Vec<multivolume::FaceReport>,
+    /// Smoothness across every interior face of a volume topology.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub face_interfaces: Vec<multivolume::FaceInterfaceReport>,
     /// Files written (empty if nothing was written).
     pub outputs: Vec<String>,
 }
@@ -120,6 +128,20 @@ impl RunReport {
                     first: v.quality.folded_list(),
                 })
             })
+            .or_else(|| {
+                let f = self.faces.iter().find(|f| f.quality.is_folded())?;
+                Some(Error::Folded {
+                    place: format!("{}: face '{}'", self.case, f.name),
+                    count: f.quality.folded_cells,
+                    first: f
+                        .quality
+                        .first_folded
+                        .iter()
+                        .map(|c| format!("cell ({}, {})", c[0], c[1]))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                })
+            })
     }
 }
 
@@ -127,8 +149,11 @@ impl RunReport {
 pub struct Generated {
     pub blocks: Vec<(String, Block)>,
     pub report: RunReport,
-    /// The multi-block topology, for the connectivity file.
+    /// The 2D multi-block topology (for pictures of it).
     pub topology: Option<crate::grid::topology::Topology>,
+    /// The connectivity of a multi-block case (2D or volume topology), for `.conn` files and
+    /// solver meshes.
+    pub connectivity: Option<ConnFile>,
 }
 
 /// Grids every block of a case. `progress` receives a line per finished block.
@@ -196,7 +221,15 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
         blocks.push((case.block_name(k), block));
     }
     let mut volumes = Vec::new();
+    let (mut faces, mut face_interfaces) = (Vec::new(), Vec::new());
+    if let Some(topo) = &case.topology3 {
+        let g = multivolume::generate(case, topo)?;
+        (blocks, volumes, faces, face_interfaces) = (g.blocks, g.volumes, g.faces, g.interfaces);
+    }
     for k in 0..spec.volumes.len() {
+        if case.topology3.is_some() {
+            break;
+        }
         let (name, block, rep) = crate::job::volume::generate_volume(case, k)?;
         volumes.push(rep);
         blocks.push((name, block));
@@ -208,15 +241,30 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             blocks: reports,
             interfaces,
             volumes,
+            faces,
+            face_interfaces,
             outputs: vec![],
         },
         topology: case.topology.clone(),
+        connectivity: connectivity(case),
     })
+}
+
+/// The connectivity of a multi-block case (2D or volume topology), if it has one.
+pub fn connectivity(case: &LoadedCase) -> Option<ConnFile> {
+    match (&case.topology, &case.topology3) {
+        (Some(t), _) => Some(crate::io::connectivity::from_topology(t)),
+        (_, Some(t)) => Some(crate::io::connectivity::from_topology3(t)),
+        _ => None,
+    }
 }
 
 /// The algebraic (transfinite) start grids of every block, as the Picard iteration sees them
 /// (they may fold: the final grid does not depend on them).
 pub fn start_grids(case: &LoadedCase) -> Result<Vec<(String, Block)>> {
+    if let Some(topo) = &case.topology3 {
+        return multivolume::start_grids(case, topo);
+    }
     (0..case.case.blocks.len())
         .map(|k| {
             let start = match case.case.blocks[k].kind {
@@ -339,10 +387,11 @@ pub fn write_outputs(
     write_outputs_with(blocks, None, paths, fmt)
 }
 
-/// [`write_outputs`] with the topology of a multi-block case (for `.conn` files).
+/// [`write_outputs`] with the connectivity of a multi-block case (for `.conn` files and
+/// solver meshes).
 pub fn write_outputs_with(
     blocks: &[(String, Block)],
-    topology: Option<&crate::grid::topology::Topology>,
+    topology: Option<&ConnFile>,
     paths: &[PathBuf],
     fmt: &Plot3dFormat,
 ) -> Result<Vec<PathBuf>> {
@@ -358,7 +407,7 @@ pub fn write_outputs_with(
     {
         return Err(Error::input(
             p.0.display().to_string(),
-            "a connectivity file needs a multi-block case (with [[edge]] tables)",
+            "a connectivity file needs a multi-block case (with [[edge]] or [[face]] tables)",
         ));
     }
     // All or nothing: a failure at the third file must not leave the first two.
@@ -368,7 +417,7 @@ pub fn write_outputs_with(
 /// The loop of [`write_outputs_with`], inside its stage.
 fn write_each(
     blocks: &[(String, Block)],
-    topology: Option<&crate::grid::topology::Topology>,
+    topology: Option<&ConnFile>,
     paths: &[PathBuf],
     kinds: &[OutputKind],
     fmt: &Plot3dFormat,
@@ -430,8 +479,8 @@ fn write_each(
                 written.push(path.clone());
             }
             OutputKind::Connectivity => {
-                let topo = topology.expect("checked above");
-                crate::io::connectivity::write(path, topo, blocks)?;
+                let conn = topology.expect("checked above");
+                crate::io::connectivity::write_file(path, conn)?;
                 written.push(path.clone());
             }
             OutputKind::Picture => {
@@ -440,7 +489,7 @@ fn write_each(
             }
             OutputKind::Foam | OutputKind::Su2 | OutputKind::Msh | OutputKind::Cgns => {
                 let conn = match topology {
-                    Some(t) => crate::io::connectivity::from_topology(t),
+                    Some(c) => c.clone(),
                     None => crate::io::mesh::sides_as_patches(blocks),
                 };
                 written.extend(write_mesh(path, kind, blocks, &conn)?);

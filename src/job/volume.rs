@@ -52,14 +52,25 @@ fn progress_bar(name: &str, max: usize) -> Option<indicatif::ProgressBar> {
 /// Grids volume k of a case: faces, transfinite start, Picard solve, 3D quality.
 pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, VolumeReport)> {
     let t0 = Instant::now();
+    let faces = volume_faces(case, k, &case.case.solver.picard)?;
+    solve_volume(case, k, &faces, &volume_place(case, k), t0)
+}
+
+/// Grids volume k of a case from its validated `faces` (the `[[volume]]` table gives the
+/// solver, the wall and its options): Picard solve, wall spacing, 3D quality. `t0`: when
+/// the block's work began (for its seconds).
+pub(crate) fn solve_volume(
+    case: &LoadedCase,
+    k: usize,
+    faces: &Faces,
+    place: &str,
+    t0: Instant,
+) -> Result<(String, Block, VolumeReport)> {
     let spec = &case.case;
     let v = &spec.volumes[k];
-    let place = volume_place(case, k);
     let name = volume_name(case, k);
     let params = &spec.solver.picard;
-    let faces = volume_faces(case, k, params)?;
-    let mut solver =
-        for_block(&v.linear, [v.ni, v.nj, v.nk]).map_err(|m| Error::input(&place, m))?;
+    let mut solver = for_block(&v.linear, faces.dims()).map_err(|m| Error::input(place, m))?;
     let pb = progress_bar(&name, params.max_steps);
     let mut cb = |n: usize, s: &crate::elliptic::picard::PicardStep| {
         if let Some(pb) = &pb {
@@ -70,30 +81,30 @@ pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, Vo
             ));
         }
     };
-    let wall = wall_face(v, &place)?;
+    let wall = wall_face(v, place)?;
     let r = match wall {
         Some(w) => {
-            check_kind(spec.solver.control, &place)?;
+            check_kind(spec.solver.control, place)?;
             let opts = WallOptions {
                 orthogonal: v
                     .wall_orthogonal
                     .unwrap_or(WallOptions::default().orthogonal),
             };
-            grid_volume_wall_with(&faces, w, opts, solver.as_mut(), params, &place, &mut cb)?
+            grid_volume_wall_with(faces, w, opts, solver.as_mut(), params, place, &mut cb)?
         }
         None if v.wall_orthogonal.is_some() => {
             return Err(Error::input(
-                &place,
+                place,
                 "wall_orthogonal needs wall = \"F1\" … \"F6\"",
             ))
         }
         None => grid_volume(
-            &faces,
+            faces,
             None,
             spec.solver.control,
             solver.as_mut(),
             params,
-            &place,
+            place,
             &mut cb,
         )?,
     };
@@ -102,7 +113,7 @@ pub fn generate_volume(case: &LoadedCase, k: usize) -> Result<(String, Block, Vo
     }
     let q = quality3d(&r.grid);
     let wall = match wall {
-        Some(w) => Some(wall_figure(&r.grid, w, &wall_targets(&faces, w, &place)?)),
+        Some(w) => Some(wall_figure(&r.grid, w, &wall_targets(faces, w, place)?)),
         None => None,
     };
     let [ni, nj, nk] = r.grid.dims();

@@ -1,10 +1,11 @@
 //! Smoothness of a multi-block grid across an interior edge: the kink of the grid lines that
 //! cross it (the angle between the line directions on the two sides; 0 when a line goes
 //! straight through) and the ratio of the first spacings on the two sides (1 when they match).
-//! The edge's end nodes (vertices, where blocks meet at corners) are not counted.
+//! The edge's end nodes (vertices, where blocks meet at corners) are not counted; across an
+//! interior face of a volume topology, the face's boundary nodes are not counted.
 
 use crate::grid::topology::SideRange;
-use crate::Grid2;
+use crate::{Grid2, Grid3};
 use serde::Serialize;
 
 /// Kink and spacing ratio along one interface.
@@ -28,11 +29,32 @@ pub fn interface_smoothness<const D: usize>(
     rb: &SideRange,
 ) -> InterfaceSmoothness {
     let n = ra.len();
+    smoothness(
+        (1..n.saturating_sub(1))
+            .map(|k| (at(ga, ra.node(k)), at(ga, ra.inner(k)), at(gb, rb.inner(k)))),
+    )
+}
+
+/// The smoothness across an interior face of a volume topology: for every node of the face
+/// (its boundary nodes left out), its block node in `ga`, the node one step into `ga` and the
+/// node one step into `gb`.
+pub fn face_smoothness(
+    ga: &Grid3,
+    gb: &Grid3,
+    nodes: impl Iterator<Item = [[usize; 3]; 3]>,
+) -> InterfaceSmoothness {
+    let at3 = |g: &Grid3, [i, j, k]: [usize; 3]| g.point(i, j, k);
+    smoothness(nodes.map(|[p, a, b]| (at3(ga, p), at3(ga, a), at3(gb, b))))
+}
+
+/// Kink and spacing ratio over (node, neighbour on side a, neighbour on side b) triples.
+fn smoothness<const D: usize>(
+    triples: impl Iterator<Item = ([f64; D], [f64; D], [f64; D])>,
+) -> InterfaceSmoothness {
     let mut s = InterfaceSmoothness::default();
-    for k in 1..n.saturating_sub(1) {
-        let p = at(ga, ra.node(k));
-        let a = sub(&at(ga, ra.inner(k)), &p);
-        let b = sub(&at(gb, rb.inner(k)), &p);
+    for (p, pa, pb) in triples {
+        let a = sub(&pa, &p);
+        let b = sub(&pb, &p);
         let (la, lb) = (norm(&a), norm(&b));
         // Straight through: a and b point in opposite directions.
         let cos = -a.iter().zip(&b).map(|(u, v)| u * v).sum::<f64>() / (la * lb);

@@ -1,6 +1,6 @@
 //! Parametric curves x(u), u ∈ [0, 1], in R³, and their arclength parametrization.
 //!
-//! One file per curve type (`line`, `arc`, `polyline`, `spline`, `naca`); `arclength` holds the
+//! One file per curve type (`line`, `arc`, `polyline`, `spline`, `naca`, `surface_line`); `arclength` holds the
 //! generic algorithm that every curve uses: [`ArclengthMap`] (normalized arclength σ ↔ u) and
 //! [`sample`] (points at given σ, as needed for the boundary distributions of METHOD.md [30–38]).
 
@@ -10,6 +10,7 @@ mod line;
 mod naca;
 mod polyline;
 mod spline;
+mod surface_line;
 
 pub use arc::Arc;
 pub use arclength::{sample, ArclengthMap};
@@ -17,6 +18,7 @@ pub use line::Line;
 pub use naca::{Naca4, Naca4Side};
 pub use polyline::Polyline;
 pub use spline::Spline;
+pub use surface_line::SurfaceLine;
 
 use crate::{GeometryError, Vec3};
 

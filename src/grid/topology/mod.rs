@@ -11,6 +11,7 @@
 
 mod connect;
 mod merge;
+pub mod volume;
 
 pub use connect::{Connectivity, Interface, Patch, SideRange};
 pub use merge::{Group, GroupPiece, Op};
@@ -64,7 +65,12 @@ pub struct BlockSides {
 pub struct Topology {
     pub vertices: Vec<String>,
     pub edges: Vec<TopoEdge>,
+    /// The four-sided pieces over the edges: the blocks of a 2D grid, or the faces of a
+    /// volume topology ([`volume::Topology3`]), by `noun`.
     pub blocks: Vec<TopoBlock>,
+    /// "block", or "face" for the faces of a volume topology (messages; in a volume topology
+    /// an edge may border any number of faces).
+    pub noun: &'static str,
 }
 
 impl Topology {
@@ -75,6 +81,27 @@ impl Topology {
         blocks: &[BlockSides],
         place: &str,
     ) -> Result<Self> {
+        Self::build(vertices, edges, blocks, "block", place)
+    }
+
+    /// The faces of a volume topology as four-sided pieces over the edges: checked as blocks
+    /// are, except that an edge may border any number of faces and none floats.
+    pub fn new_faces(
+        vertices: Vec<String>,
+        edges: Vec<TopoEdge>,
+        faces: &[BlockSides],
+        place: &str,
+    ) -> Result<Self> {
+        Self::build(vertices, edges, faces, "face", place)
+    }
+
+    fn build(
+        vertices: Vec<String>,
+        edges: Vec<TopoEdge>,
+        blocks: &[BlockSides],
+        noun: &'static str,
+        place: &str,
+    ) -> Result<Self> {
         unique(&vertices, "vertex", place)?;
         unique(
             &edges.iter().map(|e| e.name.clone()).collect::<Vec<_>>(),
@@ -83,7 +110,7 @@ impl Topology {
         )?;
         unique(
             &blocks.iter().map(|b| b.name.clone()).collect::<Vec<_>>(),
-            "block",
+            noun,
             place,
         )?;
         for e in &edges {
@@ -98,6 +125,7 @@ impl Topology {
             vertices,
             edges,
             blocks: Vec::new(),
+            noun,
         };
         for b in blocks {
             let block = topo.resolve(b, place)?;
@@ -147,15 +175,15 @@ impl Topology {
         out
     }
 
-    /// "file: block 'name'".
+    /// "file: block 'name'" (or "face 'name'").
     pub fn block_place(&self, place: &str, b: usize) -> String {
-        format!("{place}: block '{}'", self.blocks[b].name)
+        format!("{place}: {} '{}'", self.noun, self.blocks[b].name)
     }
 
     /// Resolves one block's names and edge directions: the sides E3, E2, E4 (backwards), E1
     /// (backwards) must form a closed loop.
     fn resolve(&self, b: &BlockSides, place: &str) -> Result<TopoBlock> {
-        let at = format!("{place}: block '{}'", b.name);
+        let at = format!("{place}: {} '{}'", self.noun, b.name);
         let mut ids: [Vec<(usize, Option<bool>)>; 4] = Default::default();
         for side in Edge::ALL {
             let chain = &b.sides[side.index()];
@@ -296,7 +324,10 @@ impl Topology {
                 if np < 3 {
                     return Err(Error::input(
                         self.block_place(place, b),
-                        format!("sides {p} and {q} have {np} nodes; a block needs at least 3"),
+                        format!(
+                            "sides {p} and {q} have {np} nodes; a {} needs at least 3",
+                            self.noun
+                        ),
                     ));
                 }
             }
@@ -321,10 +352,14 @@ impl Topology {
                 0 => {
                     return Err(Error::input(
                         at,
-                        "the edge is used by no block (remove it or add it to a block side)",
+                        format!(
+                            "the edge is used by no {0} (remove it or add it to a {0} side)",
+                            self.noun
+                        ),
                     ))
                 }
                 1 | 2 => {}
+                _ if self.noun == "face" => {}
                 k => {
                     return Err(Error::input(
                         at,

@@ -8,8 +8,8 @@
 //!    coarse nodes are every other node of the next grid), each generated as `run` does; the
 //!    difference of each grid to the next at the common nodes (max and rms, relative to the
 //!    block's diameter; [`crate::quality::family`]) and the observed order p = log2(e_h/e_{h/2}).
-//! 2. **Start grid** (planar, minimal and volume blocks, on the case's own grid): the Picard
-//!    iteration from a scrambled, folded start ([`crate::algebraic::scramble`], fixed seed) must
+//! 2. **Start grid** (planar, minimal and volume blocks, on the case's own grid; a volume
+//!    within the faces of its grid): the Picard iteration from a scrambled, folded start ([`crate::algebraic::scramble`], fixed seed) must
 //!    end at the grid `run` gives (from the transfinite start) to the solver's tolerance.
 //! 3. **Parametrization** (surface blocks, every level): the surface re-parametrized by a
 //!    smooth random one-to-one warp of the unit square ([`ellipgrid_geometry::Warp`], fixed
@@ -177,6 +177,16 @@ fn kinds(case: &LoadedCase) -> Vec<&'static str> {
     out
 }
 
+/// The node counts of every volume of a case (from its volume topology or its tables).
+fn volume_dims(c: &LoadedCase) -> Result<Vec<[usize; 3]>> {
+    match &c.topology3 {
+        Some(t) => Ok(t.volumes.iter().map(|v| v.dims).collect()),
+        None => (0..c.case.volumes.len())
+            .map(|k| c.case.volumes[k].dims(&crate::case::volume::volume_place(c, k)))
+            .collect(),
+    }
+}
+
 /// Whether all runs fit in memory at once (parallel), one at a time (sequential), or not at
 /// all (an error naming the case and both figures).
 fn plan(cases: &[LoadedCase], runs: usize, want_parallel: bool) -> Result<bool> {
@@ -187,8 +197,8 @@ fn plan(cases: &[LoadedCase], runs: usize, want_parallel: bool) -> Result<bool> 
             let d = c.block_dims(k);
             all.add(&place, &d, limits::BYTES_PER_NODE_2D)?;
         }
-        for v in &c.case.volumes {
-            all.add(&place, &[v.ni, v.nj, v.nk], limits::BYTES_PER_NODE_3D)?;
+        for d in volume_dims(c)? {
+            all.add(&place, &d, limits::BYTES_PER_NODE_3D)?;
         }
     }
     let Some(avail) = limits::available_memory() else {
@@ -247,13 +257,9 @@ pub fn verify(
         .map(|l| case.refined(l as u32))
         .collect::<Result<Vec<_>>>()?;
     let kinds = kinds(case);
-    let has = |k: &str| kinds.contains(&k);
     let mut tasks: Vec<runs::Task> = (0..opts.levels).map(runs::Task::Family).collect();
-    if has("surface") {
+    if kinds.contains(&"surface") {
         tasks.extend((0..opts.levels).map(runs::Task::Warped));
-    }
-    if has("planar") || has("minimal") || has("volume") {
-        tasks.push(runs::Task::Start);
     }
     let parallel = plan(&cases, tasks.len(), opts.parallel)?;
     let run = |t: &runs::Task| {
@@ -271,9 +277,13 @@ pub fn verify(
     for (t, r) in tasks.iter().zip(done) {
         let (out, seconds) = r?;
         match (t, out) {
-            (runs::Task::Family(l), runs::Output::Family(g)) => levels[*l] = Some((*g, seconds)),
+            (runs::Task::Family(l), runs::Output::Family(g, s)) => {
+                levels[*l] = Some((*g, seconds));
+                if *l == 0 {
+                    starts = s;
+                }
+            }
             (runs::Task::Warped(l), runs::Output::Warped(w)) => warped[*l] = w,
-            (_, runs::Output::Start(s)) => starts = s,
             _ => unreachable!("every task gives its own output"),
         }
     }
@@ -340,7 +350,7 @@ fn write_family(
         for (g, paths) in gens.iter().zip(&all) {
             written.extend(crate::job::write_outputs_with(
                 &g.blocks,
-                g.topology.as_ref(),
+                g.connectivity.as_ref(),
                 paths,
                 &fmt,
             )?);
@@ -367,7 +377,7 @@ pub fn default_formats(case: &LoadedCase) -> Vec<String> {
     if out.is_empty() {
         out.push("x".into());
     }
-    if case.topology.is_some() && !out.iter().any(|e| e == "conn") {
+    if crate::job::connectivity(case).is_some() && !out.iter().any(|e| e == "conn") {
         out.push("conn".into());
     }
     out.dedup();

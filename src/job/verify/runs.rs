@@ -1,17 +1,18 @@
-//! The runs of `verify`: each level of the family (as `run` generates it), the surface blocks
-//! of each level on a warped parametrization, and the case's own grid from a scrambled start.
+//! The runs of `verify`: each level of the family (as `run` generates it; level 0 also from a
+//! scrambled start) and the surface blocks of each level on a warped parametrization.
 
 use super::{SurfaceGrid, VerifyOptions, WARP_STRENGTH};
 use crate::algebraic::scramble::{scrambled, scrambled3};
 use crate::algebraic::transfinite3d;
 use crate::algebraic::transform::transfinite;
-use crate::case::volume::{volume_faces, volume_place, wall_face};
+use crate::case::volume::{volume_place, wall_face};
 use crate::case::{BlockKind, LoadedCase};
 use crate::elliptic::orthogonal::grid_block_with;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::volume::grid_volume;
 use crate::elliptic::wall::{grid_volume_wall_from, WallOptions, LOOSE_TOLERANCE};
 use crate::grid::boundary::Boundary2;
+use crate::grid::faces::Faces;
 use crate::grid::Grid2;
 use crate::io::Block;
 use crate::job::{generate, Generated};
@@ -25,20 +26,18 @@ use ellipgrid_geometry::{Surface, Warp, Warped};
 /// One run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Task {
-    /// Level l of the family.
+    /// Level l of the family (level 0 then also from the scrambled start).
     Family(usize),
     /// The surface blocks of level l on the warped parametrization.
     Warped(usize),
-    /// Level 0 from the scrambled start.
-    Start,
 }
 
 /// What a run gives.
 pub(super) enum Output {
-    Family(Box<Generated>),
+    /// The level's grids, and (level 0) the runs from the scrambled start.
+    Family(Box<Generated>, Vec<StartRun>),
     /// (block, grid) of every surface block.
     Warped(Vec<(usize, Block)>),
-    Start(Vec<StartRun>),
 }
 
 /// The grids of one unit (a block, a row of blocks joined by floating edges, a volume) from
@@ -72,7 +71,12 @@ pub(super) fn run(task: Task, cases: &[LoadedCase], opts: &VerifyOptions) -> Res
                     g.blocks[k].1 = grid;
                 }
             }
-            Ok(Output::Family(Box::new(g)))
+            let s = if l == 0 {
+                starts(&cases[0], opts.seed, &g)?
+            } else {
+                Vec::new()
+            };
+            Ok(Output::Family(Box::new(g), s))
         }
         Task::Warped(l) => {
             let warp = Warp::new(opts.seed, WARP_STRENGTH).map_err(|source| Error::Geometry {
@@ -81,7 +85,6 @@ pub(super) fn run(task: Task, cases: &[LoadedCase], opts: &VerifyOptions) -> Res
             })?;
             Ok(Output::Warped(surfaces(&cases[l], Some(&warp), opts)?))
         }
-        Task::Start => Ok(Output::Start(starts(&cases[0], opts.seed)?)),
     }
 }
 
@@ -167,8 +170,9 @@ fn solved<T>(r: Result<T>) -> Result<std::result::Result<T, String>> {
     }
 }
 
-/// Every 2D block (or group) and volume of `case` from its scrambled start.
-fn starts(case: &LoadedCase, seed: u64) -> Result<Vec<StartRun>> {
+/// Every 2D block (or group) and volume of `case` from its scrambled start (the volumes
+/// within the faces of their grids in `g`, the level's grids).
+fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> {
     let mut out = Vec::new();
     let nblocks = case.case.blocks.len();
     let tol = case.case.solver.picard.tolerance;
@@ -245,7 +249,10 @@ fn starts(case: &LoadedCase, seed: u64) -> Result<Vec<StartRun>> {
         }
     }
     for k in 0..case.case.volumes.len() {
-        let (cells, bad, r) = start_volume(case, k, seed)?;
+        let Some((_, Block::Volume(grid))) = g.blocks.get(nblocks + k) else {
+            unreachable!("the volumes follow the 2D blocks");
+        };
+        let (cells, bad, r) = start_volume(case, k, &Faces::from_grid(grid), seed)?;
         let wall = wall_face(&case.case.volumes[k], &volume_place(case, k))?;
         let t = if wall.is_some() {
             tol.max(LOOSE_TOLERANCE)
@@ -257,28 +264,19 @@ fn starts(case: &LoadedCase, seed: u64) -> Result<Vec<StartRun>> {
     Ok(out)
 }
 
-/// Volume k from its scrambled start (with its wall spacing, if any, as `run` grids it).
-#[allow(clippy::type_complexity)]
-fn start_volume(
-    case: &LoadedCase,
-    k: usize,
-    seed: u64,
-) -> Result<(
-    usize,
-    usize,
-    std::result::Result<(Vec<Block>, PicardInfo), String>,
-)> {
+/// Volume k within `faces` from its scrambled start (with its wall spacing, if any, as `run`
+/// grids it).
+fn start_volume(case: &LoadedCase, k: usize, faces: &Faces, seed: u64) -> Result<Unit<Vec<Block>>> {
     let place = format!("{} (scrambled start)", volume_place(case, k));
     let v = &case.case.volumes[k];
     let spec = &case.case.solver;
     let params: &PicardParams = &spec.picard;
-    let faces = volume_faces(case, k, params)?;
-    let start = scrambled3(&transfinite3d::transfinite(&faces), seed);
+    let start = scrambled3(&transfinite3d::transfinite(faces), seed);
     let [ni, nj, nk] = start.dims();
     let cells = (ni - 1) * (nj - 1) * (nk - 1);
     let bad = quality3d(&start).folded_cells;
-    let mut solver = solve::select::for_block(&v.linear, [v.ni, v.nj, v.nk])
-        .map_err(|m| Error::input(&place, m))?;
+    let mut solver =
+        solve::select::for_block(&v.linear, faces.dims()).map_err(|m| Error::input(&place, m))?;
     let r = match wall_face(v, &place)? {
         Some(w) => {
             let opts = WallOptions {
@@ -287,7 +285,7 @@ fn start_volume(
                     .unwrap_or(WallOptions::default().orthogonal),
             };
             grid_volume_wall_from(
-                &faces,
+                faces,
                 w,
                 Some(start),
                 opts,
@@ -298,7 +296,7 @@ fn start_volume(
             )
         }
         None => grid_volume(
-            &faces,
+            faces,
             Some(start),
             spec.control,
             solver.as_mut(),
