@@ -39,6 +39,11 @@ pub enum Error {
         source: crate::solve::SolveError,
     },
 
+    /// A property `ellipgrid verify` checks fails (the observed order of a grid family, the
+    /// independence of the start grid or of the parametrization); `place` names the block.
+    #[error("{place}: {msg}")]
+    Property { place: String, msg: String },
+
     /// The generated grid folds (non-positive Jacobian at a cell corner).
     #[error("{place}: the grid folds: {count} folded cell(s), first at {first}")]
     Folded {
@@ -73,7 +78,8 @@ impl Error {
         }
     }
 
-    /// Process exit code: 2 for bad input, 3 for a folded grid, 4 for a solver failure.
+    /// Process exit code: 2 for bad input, 3 for a folded grid, 4 for a solver failure, 5 for
+    /// a property that `verify` finds broken.
     pub fn exit_code(&self) -> u8 {
         match self {
             Error::Input { .. }
@@ -82,6 +88,7 @@ impl Error {
             | Error::Geometry { .. } => 2,
             Error::Folded { .. } => 3,
             Error::Solve { .. } => 4,
+            Error::Property { .. } => 5,
         }
     }
 }

@@ -7,6 +7,7 @@
 //! | [`airfoil`] | Selig / Lednicer `.dat` files | [`read_airfoil_dat`], [`airfoil_curve`] |
 //! | [`surface`] | parametric surfaces on (u, v) ∈ [0, 1]² with 2nd derivatives; closest point | [`Surface`], [`HermiteSurface`], [`BSplineSurf`], [`project`], [`SurfaceLocator`] |
 //! | [`bvh`] | conservative f64 box hierarchy over obvhs | [`BoxTree`] |
+//! | [`random`] | a fixed-seed generator (random warps, scrambled starts) | [`random::SplitMix64`] |
 //!
 //! A boundary edge is a [`Curve`] plus a [`Distribution`]:
 //!
@@ -28,6 +29,8 @@
 //! - \[TP 96338\] J. Spekreijse, J. W. Boerstoel, Multiblock grid generation, NLR TP 96338.
 //! - \[Piegl & Tiller\] L. Piegl, W. Tiller, The NURBS Book, 2nd ed., Springer 1997 (A2.3:
 //!   B-spline basis derivatives; rational derivatives, [`BSplineSurf`]).
+//! - \[Steele et al. 2014\] G. L. Steele, D. Lea, C. H. Flood, Fast splittable pseudorandom
+//!   number generators, OOPSLA 2014 (SplitMix64, [`random::SplitMix64`]).
 //! - \[Ericson\] C. Ericson, Real-Time Collision Detection, Morgan Kaufmann 2005 (§5.1.5:
 //!   closest point on a triangle, [`SurfaceLocator`]).
 #![warn(missing_docs)]
@@ -36,6 +39,7 @@ pub mod airfoil;
 pub mod bvh;
 pub mod curve;
 pub mod distribution;
+pub mod random;
 pub mod surface;
 
 pub use airfoil::{airfoil_curve, read_airfoil_dat};
@@ -43,10 +47,11 @@ pub use bvh::BoxTree;
 pub use curve::{
     sample, Arc, ArclengthMap, Curve, Line, Naca4, Naca4Side, Polyline, Spline, SurfaceLine,
 };
-pub use distribution::{geometric, reverse, uniform, vinokur, Distribution};
+pub use distribution::{geometric, reverse, uniform, vinokur, vinokur_refined, Distribution};
 pub use surface::{
     project, project_to_edge, project_within, scherk_distance, BSplineSurf, HermiteSurface, Plane,
     Scherk, Surface, SurfaceEdge, SurfaceLocator, SurfacePoint, TanhBump, TruckCurve, TruckSurface,
+    Warp, Warped,
 };
 
 /// A point or vector in R³; planar curves have z = 0.

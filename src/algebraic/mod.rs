@@ -14,6 +14,7 @@ pub mod blend;
 pub mod control2d;
 pub mod control3d;
 pub mod coons;
+pub mod scramble;
 pub mod transfinite3d;
 pub mod transform;
 

@@ -10,6 +10,7 @@ use crate::{Error, Result};
 use ellipgrid_geometry::{self as geo, Curve, Vec3};
 
 pub mod limits;
+pub mod refine;
 pub mod spec;
 pub mod surface;
 pub mod topology;
@@ -77,6 +78,12 @@ impl LoadedCase {
     pub fn parse(text: &str, path: &Path) -> Result<Self> {
         let case: Case = toml::from_str(text)
             .map_err(|e| Error::input(path.display().to_string(), e.to_string()))?;
+        Self::from_case(case, path)
+    }
+
+    /// Checks a parsed case (sizes, memory, topology); `path` is used for messages and
+    /// relative paths.
+    pub fn from_case(case: Case, path: &Path) -> Result<Self> {
         if case.blocks.is_empty() && case.volumes.is_empty() {
             return Err(Error::input(
                 path.display().to_string(),

@@ -394,6 +394,15 @@ pub enum DistributionSpec {
         first: Option<f64>,
         last: Option<f64>,
     },
+    /// `base` as fitted for `n` nodes, sampled `level` times finer in its own parameter
+    /// ([`ellipgrid_geometry::Distribution::sample_refined`]): the grid families of `ellipgrid
+    /// verify` ([`crate::case::LoadedCase::refined`]). Not a case-file key.
+    #[serde(skip)]
+    Refined {
+        base: Box<DistributionSpec>,
+        n: usize,
+        level: u32,
+    },
 }
 
 impl Default for DistributionSpec {
@@ -406,6 +415,32 @@ impl DistributionSpec {
     /// Normalized arclengths of `n` nodes on an edge of length `len` (spacings in the spec are
     /// lengths; the distribution hits them exactly).
     pub fn sample(&self, n: usize, len: f64, at: &str) -> Result<Vec<f64>> {
+        let geo_err = |source| Error::Geometry {
+            place: at.to_string(),
+            source,
+        };
+        if let DistributionSpec::Refined { base, n: nb, level } = self {
+            let sigma = base
+                .geometric(len, at)?
+                .sample_refined(*nb, *level)
+                .map_err(geo_err)?;
+            if sigma.len() != n {
+                return Err(Error::input(
+                    at,
+                    format!(
+                        "{n} nodes asked of a distribution of {nb} nodes refined {level} times \
+                         ({} nodes)",
+                        sigma.len()
+                    ),
+                ));
+            }
+            return Ok(sigma);
+        }
+        self.geometric(len, at)?.sample(n).map_err(geo_err)
+    }
+
+    /// The geometry crate's distribution for an edge of length `len` (spacings as fractions).
+    fn geometric(&self, len: f64, at: &str) -> Result<geo::Distribution> {
         if !(len.is_finite() && len > 0.0) {
             return Err(Error::input(at, "the edge has zero length"));
         }
@@ -419,7 +454,7 @@ impl DistributionSpec {
                 ))
             }
         };
-        let dist = match self {
+        Ok(match self {
             DistributionSpec::Uniform {} => geo::Distribution::Uniform,
             DistributionSpec::Geometric { first } => geo::Distribution::Geometric {
                 first: rel(*first, "first")?,
@@ -428,10 +463,7 @@ impl DistributionSpec {
                 first: first.map(|v| rel(v, "first")).transpose()?,
                 last: last.map(|v| rel(v, "last")).transpose()?,
             },
-        };
-        dist.sample(n).map_err(|source| Error::Geometry {
-            place: at.to_string(),
-            source,
+            DistributionSpec::Refined { base, .. } => base.geometric(len, at)?,
         })
     }
 }

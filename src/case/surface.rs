@@ -102,9 +102,17 @@ impl LoadedCase {
     /// placed by each edge's distribution along the surface's edge curve.
     #[allow(clippy::type_complexity)]
     pub fn surface_block(&self, k: usize) -> Result<(Box<dyn Surface>, [Vec<[f64; 2]>; 4])> {
+        let surface = self.surface(k)?;
+        let uv = self.surface_uv(k, surface.as_ref())?;
+        Ok((surface, uv))
+    }
+
+    /// The (u, v) of the boundary nodes of surface block k (E1..E4, index order) on `surface`
+    /// (the block's own surface, or the same surface re-parametrized): each edge's
+    /// distribution by 3D arclength along the surface's edge curve, or its nodes projected.
+    pub fn surface_uv(&self, k: usize, surface: &dyn Surface) -> Result<[Vec<[f64; 2]>; 4]> {
         let place = self.block_place(k);
         self.check_size(k)?;
-        let surface = self.surface(k)?;
         let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
         let [ni, nj] = self.block_dims(k);
         for (e, spec) in Edge::ALL.into_iter().zip(self.edge_specs(k)?) {
@@ -112,14 +120,14 @@ impl LoadedCase {
             let n = if e.runs_along_i() { ni } else { nj };
             uv[e.index()] = match (&spec.curve, spec.reverse) {
                 (None, false) => {
-                    let len = edge_length(surface.as_ref(), e);
+                    let len = edge_length(surface, e);
                     let sigma = spec.distribution.sample(n, len, &at)?;
-                    edge_params(surface.as_ref(), e, &sigma)
+                    edge_params(surface, e, &sigma)
                 }
                 (Some(crate::case::CurveSpec::Nodes { points }), false)
                     if matches!(spec.distribution, crate::case::DistributionSpec::Uniform {}) =>
                 {
-                    project_nodes(surface.as_ref(), e, points, n, &at)?
+                    project_nodes(surface, e, points, n, &at)?
                 }
                 _ => {
                     return Err(Error::input(
@@ -131,7 +139,7 @@ impl LoadedCase {
                 }
             };
         }
-        Ok((surface, uv))
+        Ok(uv)
     }
 }
 

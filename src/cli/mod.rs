@@ -1,10 +1,12 @@
 //! clap definitions and the subcommands. Exit codes: 0 success, 2 bad input (unreadable or
-//! malformed files, inconsistent edges, …), 3 folded grid, 4 solver failure.
+//! malformed files, inconsistent edges, …), 3 folded grid, 4 solver failure, 5 a property
+//! `verify` checks fails.
 
 mod convert;
 mod plot;
 mod print;
 mod step;
+mod verify;
 
 use clap::{Parser, Subcommand};
 use ellipgrid::case::LoadedCase;
@@ -104,6 +106,10 @@ enum Command {
     Plot(plot::PlotArgs),
     /// STEP files: list and grid B-spline faces, export a control net as a B-spline face.
     Step(step::StepArgs),
+    /// Check a case's grids under refinement: grid families (N, 2N − 1, 4N − 3) and their
+    /// observed order, independence of the start grid and of the surface parametrization
+    /// (exit 5 if a property fails).
+    Verify(verify::VerifyArgs),
 }
 
 /// Parses the command line and runs it.
@@ -129,6 +135,7 @@ pub fn main() -> ExitCode {
         Command::Convert(a) => convert::convert(&a),
         Command::Plot(a) => plot::plot(&a),
         Command::Step(a) => step::step(&a),
+        Command::Verify(a) => verify::run(&a),
         Command::Smooth {
             input,
             output,

@@ -47,7 +47,9 @@ pub const MAX_PASSES: usize = 6;
 /// Passes stop once every column node's |ln(goal / distance)| is below this (the first-cell
 /// heights are then within ~0.5 %).
 pub const TOLERANCE: f64 = 0.05;
-/// Picard tolerance of the intermediate solves (relative to the block's diameter).
+/// Picard tolerance of the intermediate solves (relative to the block's diameter). The passes
+/// remap from these grids, so the final grid is defined only to about this tolerance (a start
+/// grid changes it by that much).
 pub const LOOSE_TOLERANCE: f64 = 1e-8;
 /// Largest change of a node's parameter in one pass (factor).
 const MAX_RATIO: f64 = 4.0;

@@ -7,6 +7,7 @@ mod mesh;
 pub mod multiblock;
 pub mod multivolume;
 pub mod smooth;
+pub mod verify;
 pub mod volume;
 
 pub use mesh::{mesh_options, write_mesh, MeshOptions, FOAM_SPAN, NO_CGNS};

@@ -37,6 +37,7 @@
 //! written as the strings `"inf"`, `"-inf"` and `"nan"` and read back as such.
 
 mod display;
+pub mod family;
 pub mod interface;
 pub(crate) use display::cell_list;
 mod geom;

@@ -8,7 +8,7 @@
 
 mod vinokur;
 
-pub use vinokur::vinokur;
+pub use vinokur::{vinokur, vinokur_refined};
 
 use crate::GeometryError;
 
@@ -44,6 +44,77 @@ impl Distribution {
             Distribution::Vinokur { first, last } => vinokur(n, first, last),
         }
     }
+
+    /// The distribution of n nodes refined `level` times in its own parameter, with
+    /// (n − 1)·2^level + 1 nodes: node i·2^level equals node i of
+    /// [`Distribution::sample`]`(n)` bit for bit, the nodes in between lie on the same
+    /// continuous function σ(ξ) (grid families for convergence studies: the coarse nodes are
+    /// every 2^level-th node of the fine ones).
+    ///
+    /// - uniform: the uniform distribution of the finer count;
+    /// - geometric: σ(k + τ) = σ_k + Δ_k (r^τ − 1)/(r − 1) between nodes k and k + 1, which is
+    ///   the geometric distribution with ratio r^(1/2^level) (first spacing ~first/2^level);
+    /// - Vinokur: the fitted stretching function at the finer ξ ([`vinokur_refined`]).
+    ///
+    /// # Errors
+    /// Those of [`Distribution::sample`], and a node count that overflows.
+    pub fn sample_refined(&self, n: usize, level: u32) -> Result<Vec<f64>, GeometryError> {
+        check_n(n)?;
+        let fine = refined_intervals(n - 1, level)?;
+        match *self {
+            Distribution::Uniform => Ok(uniform(fine + 1)),
+            Distribution::Geometric { first } => {
+                let sigma = geometric(n, first)?;
+                let r = if n > 2 {
+                    geometric_ratio(n - 1, first)
+                } else {
+                    1.0
+                };
+                fill(sigma, level, |tau| {
+                    if r == 1.0 {
+                        tau
+                    } else {
+                        (tau * r.ln()).exp_m1() / r.ln().exp_m1()
+                    }
+                })
+            }
+            Distribution::Vinokur { first, last } => vinokur_refined(n, first, last, level),
+        }
+    }
+}
+
+/// (intervals)·2^level, or an error if it does not fit.
+pub(crate) fn refined_intervals(intervals: usize, level: u32) -> Result<usize, GeometryError> {
+    1usize
+        .checked_shl(level)
+        .filter(|_| level < usize::BITS)
+        .and_then(|m| intervals.checked_mul(m))
+        .filter(|&f| f < usize::MAX)
+        .ok_or_else(|| {
+            GeometryError::Invalid(format!(
+                "{intervals} intervals refined {level} times overflow the node count"
+            ))
+        })
+}
+
+/// The nodes σ refined `level` times by f(τ) within each interval (f(0) = 0, f(1) = 1,
+/// increasing): σ_k + (σ_{k+1} − σ_k) f(j/2^level), the coarse nodes kept bit for bit.
+fn fill(sigma: Vec<f64>, level: u32, f: impl Fn(f64) -> f64) -> Result<Vec<f64>, GeometryError> {
+    let m = 1usize << level;
+    let mut out = Vec::with_capacity(refined_intervals(sigma.len() - 1, level)? + 1);
+    for w in sigma.windows(2) {
+        out.push(w[0]);
+        for j in 1..m {
+            out.push(w[0] + (w[1] - w[0]) * f(j as f64 / m as f64));
+        }
+    }
+    out.push(sigma[sigma.len() - 1]);
+    check_sigma("refined distribution", out)
+}
+
+/// The nodes σ refined `level` times linearly within each interval.
+pub(crate) fn fill_linear(sigma: Vec<f64>, level: u32) -> Result<Vec<f64>, GeometryError> {
+    fill(sigma, level, |tau| tau)
 }
 
 /// σ_i = i/(n − 1).
@@ -257,5 +328,43 @@ mod tests {
         assert!((r[5] - r[4] - 0.05).abs() < 1e-15);
         let enum_sampled = Distribution::Geometric { first: 0.05 }.sample(6).unwrap();
         assert_eq!(enum_sampled, s);
+    }
+
+    #[test]
+    fn refined_distributions_nest_and_keep_their_shape() {
+        for d in [
+            Distribution::Uniform,
+            Distribution::Geometric { first: 1e-3 },
+            Distribution::Geometric { first: 0.2 },
+            Distribution::Vinokur {
+                first: Some(1e-3),
+                last: None,
+            },
+        ] {
+            let coarse = d.sample(17).unwrap();
+            assert_eq!(d.sample_refined(17, 0).unwrap(), coarse);
+            let fine = d.sample_refined(17, 2).unwrap();
+            assert_eq!(fine.len(), 65);
+            for (i, c) in coarse.iter().enumerate() {
+                assert_eq!(fine[4 * i], *c, "{d:?} node {i}");
+            }
+            assert!(fine.windows(2).all(|w| w[1] > w[0]));
+        }
+        // geometric: the refined nodes are geometric with ratio r^(1/4)
+        let fine = Distribution::Geometric { first: 1e-3 }
+            .sample_refined(17, 2)
+            .unwrap();
+        let d: Vec<f64> = fine.windows(2).map(|w| w[1] - w[0]).collect();
+        let q = d[1] / d[0];
+        for k in 1..d.len() {
+            assert!((d[k] / d[k - 1] / q - 1.0).abs() < 1e-9, "k {k}");
+        }
+        let r = geometric_ratio(16, 1e-3);
+        assert!((q.powi(4) / r - 1.0).abs() < 1e-12);
+        assert_eq!(
+            Distribution::Uniform.sample_refined(5, 1).unwrap(),
+            uniform(9)
+        );
+        assert!(Distribution::Uniform.sample_refined(5, 64).is_err());
     }
 }

@@ -194,6 +194,24 @@ fn pick(pair: (f64, f64)) -> f64 {
 /// n < 2; a spacing not finite or not in (0, 1); first + last ≥ 1 (for n = 3: ≠ 1); n = 2 with
 /// a spacing; or an unattainable combination (the fit does not converge).
 pub fn vinokur(n: usize, first: Option<f64>, last: Option<f64>) -> Result<Vec<f64>, GeometryError> {
+    vinokur_refined(n, first, last, 0)
+}
+
+/// The stretching function fitted for `n` nodes ([`vinokur`]), sampled `level` times finer in
+/// its parameter ξ: (n − 1)·2^level + 1 nodes at ξ = i/((n − 1)·2^level). Node i·2^level is
+/// bit for bit node i of `vinokur(n, first, last)` (ξ scaled by a power of two is exact), so
+/// the coarse nodes are every 2^level-th node of the fine ones, and the end spacings shrink by
+/// ~2^level (to first order; the function, not the spacing, is kept). With n = 3 and both
+/// spacings (no stretching function, σ = [0, first, 1]) the fine nodes are linear in between.
+///
+/// # Errors
+/// Those of [`vinokur`], and a node count that overflows.
+pub fn vinokur_refined(
+    n: usize,
+    first: Option<f64>,
+    last: Option<f64>,
+    level: u32,
+) -> Result<Vec<f64>, GeometryError> {
     const WHAT: &str = "Vinokur distribution";
     check_n(n)?;
     for (name, d) in [("first", first), ("last", last)] {
@@ -202,13 +220,19 @@ pub fn vinokur(n: usize, first: Option<f64>, last: Option<f64>) -> Result<Vec<f6
         }
     }
     let intervals = n - 1;
+    let fine = super::refined_intervals(intervals, level)?;
     if intervals == 1 && (first.is_some() || last.is_some()) {
         return Err(GeometryError::Invalid(format!(
             "{WHAT}: 2 nodes have a single interval of length 1; no end spacing can be prescribed"
         )));
     }
+    let finish = |mut sigma: Vec<f64>| {
+        sigma[0] = 0.0;
+        sigma[fine] = 1.0;
+        check_sigma(WHAT, sigma)
+    };
     match (first, last) {
-        (None, None) => Ok(uniform(n)),
+        (None, None) => Ok(uniform(fine + 1)),
         (Some(d0), Some(d1)) => {
             if intervals == 2 {
                 if (d0 + d1 - 1.0).abs() > 1e-12 {
@@ -216,7 +240,7 @@ pub fn vinokur(n: usize, first: Option<f64>, last: Option<f64>) -> Result<Vec<f6
                         "{WHAT}: with 3 nodes first + last must be 1, got {d0} + {d1}"
                     )));
                 }
-                return check_sigma(WHAT, vec![0.0, d0, 1.0]);
+                return super::fill_linear(check_sigma(WHAT, vec![0.0, d0, 1.0])?, level);
             }
             if d0 + d1 >= 1.0 {
                 return Err(GeometryError::Invalid(format!(
@@ -225,34 +249,31 @@ pub fn vinokur(n: usize, first: Option<f64>, last: Option<f64>) -> Result<Vec<f6
                 )));
             }
             let (shape, a) = fit_two_sided(intervals, d0, d1)?;
-            let mut sigma: Vec<f64> = (0..n)
-                .map(|i| pick(two_sided_sigma(shape, a, i, intervals)))
-                .collect();
-            sigma[0] = 0.0;
-            sigma[intervals] = 1.0;
-            check_sigma(WHAT, sigma)
+            finish(
+                (0..=fine)
+                    .map(|i| pick(two_sided_sigma(shape, a, i, fine)))
+                    .collect(),
+            )
         }
         (Some(d0), None) => {
             let shape = fit_one_sided(intervals, d0)?;
-            let mut sigma: Vec<f64> = (0..n)
-                .map(|i| pick(one_sided(shape, i, intervals)))
-                .collect();
-            sigma[0] = 0.0;
-            sigma[intervals] = 1.0;
-            check_sigma(WHAT, sigma)
+            finish(
+                (0..=fine)
+                    .map(|i| pick(one_sided(shape, i, fine)))
+                    .collect(),
+            )
         }
         (None, Some(d1)) => {
             // Mirror of the one-sided map: σ_i = 1 − u(ξ_{N−i}), from the accurate pair.
             let shape = fit_one_sided(intervals, d1)?;
-            let mut sigma: Vec<f64> = (0..n)
-                .map(|i| {
-                    let (u, w) = one_sided(shape, intervals - i, intervals);
-                    pick((w, u))
-                })
-                .collect();
-            sigma[0] = 0.0;
-            sigma[intervals] = 1.0;
-            check_sigma(WHAT, sigma)
+            finish(
+                (0..=fine)
+                    .map(|i| {
+                        let (u, w) = one_sided(shape, fine - i, fine);
+                        pick((w, u))
+                    })
+                    .collect(),
+            )
         }
     }
 }
@@ -484,5 +505,42 @@ mod tests {
         assert!(vinokur(3, Some(0.2), Some(0.3)).is_err());
         let e = vinokur(10, Some(0.6), Some(0.4)).unwrap_err().to_string();
         assert!(e.contains("below 1"), "{e}");
+    }
+
+    #[test]
+    fn refined_samples_nest_the_coarse_nodes_bit_for_bit() {
+        for (first, last) in [
+            (None, None),
+            (Some(1e-4), None),
+            (None, Some(1e-3)),
+            (Some(2e-3), Some(1e-2)),
+            (Some(0.05), Some(0.05)), // the trig branch
+        ] {
+            let coarse = vinokur(33, first, last).unwrap();
+            for level in 1..4u32 {
+                let fine = vinokur_refined(33, first, last, level).unwrap();
+                let step = 1 << level;
+                assert_eq!(fine.len(), 32 * step + 1);
+                for (i, c) in coarse.iter().enumerate() {
+                    assert_eq!(
+                        fine[i * step],
+                        *c,
+                        "{first:?} {last:?} level {level} node {i}"
+                    );
+                }
+                assert!(fine.windows(2).all(|w| w[1] > w[0]));
+                // the end spacings shrink like 2^-level (the function's slope at the ends)
+                if let Some(d0) = first {
+                    let r = d0 / fine[1];
+                    // (intervals, not slopes: off by the curvature of σ near the end)
+                    assert!((r / step as f64 - 1.0).abs() < 0.15, "{r}");
+                }
+            }
+        }
+        let three = vinokur_refined(3, Some(0.3), Some(0.7), 1).unwrap();
+        for (a, b) in three.iter().zip([0.0, 0.15, 0.3, 0.65, 1.0]) {
+            assert!((a - b).abs() < 1e-15, "{three:?}");
+        }
+        assert!(vinokur_refined(33, Some(1e-3), None, 70).is_err());
     }
 }

@@ -12,6 +12,7 @@
 //! | `project` | [`project`], [`project_within`], [`project_to_edge`]: safeguarded Newton for the closest point |
 //! | `truck` | [`TruckSurface`], [`TruckCurve`]: any truck surface / curve in its own parameters |
 //! | `locate` | [`SurfaceLocator`]: BVH of sampled cells ([`crate::BoxTree`]) + Newton |
+//! | `warp` | [`Warp`], [`Warped`]: a smooth random re-parametrization x(W(u, v)) (fixed seed) |
 //!
 //! Every impl gives exact derivatives; the tests check them against central differences.
 //!
@@ -45,6 +46,7 @@ mod project;
 #[cfg(test)]
 pub(crate) mod testutil;
 mod truck;
+mod warp;
 
 pub use analytic::{scherk_distance, Plane, Scherk, TanhBump};
 pub use bspline::BSplineSurf;
@@ -52,6 +54,7 @@ pub use hermite::HermiteSurface;
 pub use locate::SurfaceLocator;
 pub use project::{project, project_to_edge, project_within};
 pub use truck::{TruckCurve, TruckSurface};
+pub use warp::{Warp, WarpJet, Warped};
 
 use crate::Vec3;
 
