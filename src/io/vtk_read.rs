@@ -14,8 +14,15 @@ use crate::{Error, Grid2, Grid3, Result};
 
 /// Reads one `.vts` file.
 pub fn read_vts(path: &Path) -> Result<Block> {
-    let bytes = crate::io::read_input(path)?;
-    parse_vts(&bytes).map_err(|m| Error::format(path, m))
+    vts_from_bytes(&crate::io::read_input(path)?, path)
+}
+
+/// Parses the contents of a `.vts` file; `path` names it in messages.
+///
+/// # Errors
+/// [`Error::Format`] naming `path` if the contents are malformed.
+pub fn vts_from_bytes(bytes: &[u8], path: &Path) -> Result<Block> {
+    parse_vts(bytes).map_err(|m| Error::format(path, m))
 }
 
 /// Reads a `.vtm` index and every `.vts` it lists (paths relative to the index): (name, block).
