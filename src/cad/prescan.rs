@@ -1,7 +1,11 @@
 //! Limits checked on a STEP file's text before the STEP reader sees it (issue #17): the
 //! reader expands knot vectors from their multiplicities and parses nested lists
 //! recursively, so a 15 KB file with a multiplicity of 2³¹ − 1 asks for gigabytes, and
-//! 10 000 nested parentheses overflow the stack. Both are refused here with the entity named.
+//! 10 000 nested parentheses overflow the stack; and it holds the whole file as a syntax tree
+//! (measured: ~17 bytes per byte of a file of tiny entities, ~27 per byte of one long list,
+//! 10 s per million entities). Refused here, with the entity or line named: nesting, knot
+//! multiplicities, the number of entity instances, the length of one list, and the memory
+//! the reader would need against the memory available.
 
 /// Deepest parenthesis nesting accepted (real files stay below 10).
 pub const MAX_DEPTH: usize = 64;
@@ -10,12 +14,26 @@ pub const MAX_DEPTH: usize = 64;
 /// stay below 30).
 pub const MAX_MULTIPLICITY: i64 = 64;
 
-/// Checks nesting depth and every knot multiplicity of B-spline curves and surfaces.
+/// Most entity instances accepted (the 40 files of the #14 corpus have at most a few
+/// 10⁵; the reader takes ~10 s per million).
+pub const MAX_ENTITIES: usize = 5_000_000;
+
+/// Most items in one list (a B-spline's control-point rows and knot vectors stay far below).
+pub const MAX_LIST_ITEMS: usize = 1_000_000;
+
+/// Memory the STEP reader needs per byte of the file, rounded up from the measured 17–27
+/// (a million tiny `CARTESIAN_POINT`s: 40 MB file, 696 MB peak; one list of 3 million
+/// numbers: 9 MB file, 248 MB peak).
+pub const READER_BYTES_PER_BYTE: u64 = 30;
+
+/// Checks the memory the reader needs, nesting depth, the number of entities, the length of
+/// every list and every knot multiplicity of B-spline curves and surfaces.
 ///
 /// # Errors
 /// A message naming the entity (`#id`) or the line.
 pub fn check(text: &str) -> Result<(), String> {
-    check_depth(text)?;
+    check_memory(text.len())?;
+    check_structure(text)?;
     for kind in ["B_SPLINE_SURFACE_WITH_KNOTS", "B_SPLINE_CURVE_WITH_KNOTS"] {
         let mut from = 0;
         while let Some(k) = text[from..].find(kind) {
@@ -45,22 +63,63 @@ pub fn check(text: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// Parenthesis depth outside strings at most [`MAX_DEPTH`].
-fn check_depth(text: &str) -> Result<(), String> {
+/// The reader's memory for a file of `len` bytes against the memory available.
+fn check_memory(len: usize) -> Result<(), String> {
+    let Some(avail) = crate::io::available_memory() else {
+        return Ok(());
+    };
+    let need = (len as u64).saturating_mul(READER_BYTES_PER_BYTE);
+    if need > avail {
+        return Err(format!(
+            "reading this {len}-byte STEP file needs ~{:.3} GB, the machine has {:.3} GB \
+             available (set {} to override)",
+            need as f64 / 1e9,
+            avail as f64 / 1e9,
+            crate::io::MEMORY_VAR
+        ));
+    }
+    Ok(())
+}
+
+/// Outside strings: parenthesis depth at most [`MAX_DEPTH`], at most [`MAX_ENTITIES`]
+/// statements (entity instances end with `;` outside parentheses) and at most
+/// [`MAX_LIST_ITEMS`] items in any one list.
+fn check_structure(text: &str) -> Result<(), String> {
     let (mut depth, mut line, mut in_str) = (0usize, 1usize, false);
+    let mut statements = 0usize;
+    // items so far of the list open at each depth
+    let mut items = [0usize; MAX_DEPTH + 1];
     for c in text.chars() {
         match c {
             '\'' => in_str = !in_str,
             '\n' => line += 1,
-            '(' if !in_str => {
+            _ if in_str => {}
+            '(' => {
                 depth += 1;
                 if depth > MAX_DEPTH {
                     return Err(format!(
                         "line {line}: parentheses nested deeper than {MAX_DEPTH}"
                     ));
                 }
+                items[depth] = 1;
             }
-            ')' if !in_str => depth = depth.saturating_sub(1),
+            ')' => depth = depth.saturating_sub(1),
+            ',' if depth > 0 => {
+                items[depth] += 1;
+                if items[depth] > MAX_LIST_ITEMS {
+                    return Err(format!(
+                        "line {line}: a list of more than {MAX_LIST_ITEMS} items"
+                    ));
+                }
+            }
+            ';' if depth == 0 => {
+                statements += 1;
+                if statements > MAX_ENTITIES {
+                    return Err(format!(
+                        "line {line}: more than {MAX_ENTITIES} entity instances"
+                    ));
+                }
+            }
             _ => {}
         }
     }

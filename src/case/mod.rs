@@ -75,7 +75,9 @@ impl LoadedCase {
             Some(t) => {
                 for (b, blk) in t.blocks.iter().enumerate() {
                     let at = format!("{place}: block '{}'", blk.name);
-                    budget.add(&at, &t.dims(b), limits::BYTES_PER_NODE_2D)?;
+                    let dims = t.dims(b);
+                    let linear = &case.solver.linear;
+                    budget.add_solved(&at, &dims, limits::BYTES_PER_NODE_2D, linear)?;
                 }
             }
             None => {
@@ -83,7 +85,8 @@ impl LoadedCase {
                     if let (Some(ni), Some(nj)) = (b.ni, b.nj) {
                         let name = b.name.clone().unwrap_or_else(|| format!("block{}", k + 1));
                         let at = format!("{place}: block '{name}'");
-                        budget.add(&at, &[ni, nj], limits::BYTES_PER_NODE_2D)?;
+                        let linear = &case.solver.linear;
+                        budget.add_solved(&at, &[ni, nj], limits::BYTES_PER_NODE_2D, linear)?;
                     }
                 }
             }
@@ -91,7 +94,8 @@ impl LoadedCase {
         for (k, v) in case.volumes.iter().enumerate() {
             let name = v.name.clone().unwrap_or_else(|| format!("volume{}", k + 1));
             let at = format!("{place}: volume '{name}'");
-            budget.add(&at, &[v.ni, v.nj, v.nk], limits::BYTES_PER_NODE_3D)?;
+            let dims = [v.ni, v.nj, v.nk];
+            budget.add_solved(&at, &dims, limits::BYTES_PER_NODE_3D, &v.linear)?;
         }
         budget.check_memory(&place)?;
         if topology.is_none() {
