@@ -368,7 +368,7 @@ impl LoadedCase {
                 origin,
             } => {
                 let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
-                let text = crate::io::read_input_string(&path)?;
+                let text = within(at, crate::io::read_input_string(&path))?;
                 let pts = geo::read_airfoil_dat(&text).map_err(|source| Error::Geometry {
                     place: format!("{at}: {}", path.display()),
                     source,
@@ -402,6 +402,16 @@ fn origin_of(o: &Option<Vec<f64>>, at: &str) -> Result<Vec3> {
         .map(|v| point(v, at, "origin"))
         .transpose()
         .map(|p| p.unwrap_or_else(Vec3::zeros))
+}
+
+/// The error of reading a file that the case refers to, prefixed with the place in the case
+/// that names it ("case.toml: block 'w', edge E3: naca.dat: No such file"), so that every
+/// message names the case file too.
+pub(crate) fn within<T>(at: &str, r: Result<T>) -> Result<T> {
+    r.map_err(|e| match e {
+        Error::Folded { .. } | Error::Solve { .. } => e,
+        _ => Error::input(at, e.to_string()),
+    })
 }
 
 /// A point from `[x, y]` or `[x, y, z]`, finite.

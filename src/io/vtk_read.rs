@@ -35,7 +35,10 @@ pub fn read_vtm(path: &Path) -> Result<Vec<(String, Block)>> {
         let file = attr(el, "file")
             .ok_or_else(|| Error::format(path, format!("DataSet {} has no file", k + 1)))?;
         let name = attr(el, "name").unwrap_or_else(|| format!("block{}", k + 1));
-        out.push((name, read_vts(&dir.join(file))?));
+        // a listed file's error names the index too
+        let block = read_vts(&dir.join(file))
+            .map_err(|e| Error::format(path, format!("DataSet {} ('{name}'): {e}", k + 1)))?;
+        out.push((name, block));
     }
     if out.is_empty() {
         return Err(Error::format(path, "no DataSet with a file in this .vtm"));
