@@ -22,9 +22,12 @@ fn corpus() -> Vec<PathBuf> {
     v
 }
 
+/// Named blocks, as the mesh builder takes them.
+type Named = Vec<(String, Block)>;
+
 /// The fixed blocks of the fuzz target `conn` (fuzz/src/lib.rs): two planar blocks of 4 × 3
 /// nodes meeting at x = 1, and two volume blocks of 4 × 3 × 2 likewise.
-fn conn_blocks() -> (Vec<(String, Block)>, Vec<(String, Block)>) {
+fn conn_blocks() -> (Named, Named) {
     let planar = |x0: f64| {
         Block::Planar(Grid2::<2>::from_fn(4, 3, |i, j| {
             [x0 + i as f64 / 3.0, j as f64 / 2.0]

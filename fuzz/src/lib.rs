@@ -173,9 +173,12 @@ pub fn step(data: &[u8]) {
     }
 }
 
+/// Named blocks, as the mesh builder takes them.
+pub type Named = Vec<(String, Block)>;
+
 /// The fixed blocks of the `conn` target: two planar blocks side by side (4 × 3 nodes each,
 /// sharing the side x = 1) and two volume blocks likewise (4 × 3 × 2).
-pub fn conn_blocks() -> (Vec<(String, Block)>, Vec<(String, Block)>) {
+pub fn conn_blocks() -> (Named, Named) {
     let planar = |x0: f64| {
         Block::Planar(Grid2::<2>::from_fn(4, 3, |i, j| {
             [x0 + i as f64 / 3.0, j as f64 / 2.0]
