@@ -185,3 +185,32 @@ fn connectivity_ranges_off_the_block_sides_are_refused() {
         );
     }
 }
+
+#[test]
+fn step_reference_cycles_are_refused_before_the_reader_recurses_into_them() {
+    // Found by the `step` target: a SURFACE_CURVE whose 3D curve is the SURFACE_CURVE itself.
+    // truck-stepio resolves references by recursion and overflowed the stack (an abort that
+    // no panic handler sees). The pre-scan now refuses reference cycles and chains deeper
+    // than 256.
+    let d = tempfile::tempdir().unwrap();
+    let name = "step_surface_curve_cycle.step";
+    std::fs::copy(
+        root().join("tests/data/fuzz").join(name),
+        d.path().join(name),
+    )
+    .unwrap();
+    for args in [
+        &["step", "list", name][..],
+        &["step", "grid", name, "--all", "-o", "g.x"],
+    ] {
+        let o = ellipgrid(d.path(), args);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {t}");
+        assert!(
+            t.contains(name) && t.contains("entity references form a cycle: #26 → #26"),
+            "{t}"
+        );
+        assert!(!t.contains("overflow") && !t.contains("panicked"), "{t}");
+    }
+    assert_eq!(std::fs::read_dir(d.path()).unwrap().count(), 1);
+}
