@@ -118,8 +118,12 @@ for t in "${targets[@]}"; do
     rc=$?
     set -e
     took=$(($(date +%s) - start))
-    execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+    # the final stats, or (after a crash) the last status line's count
+    execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1 || true)
+    [ -n "$execs" ] || execs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#' || true)
     crashes=$(find "fuzz/artifacts/$t" -type f | wc -l)
+    # a stack overflow kills the target before libFuzzer can save the input: say so
+    grep -q 'signal: 11 (SIGSEGV)' "$log" && crashes="$crashes (+1 SIGSEGV without an input: rerun under gdb)"
     line="$(date -u +%F) $t: ${execs:-?} inputs in ${took} s, corpus $(find "$corpus" -type f | wc -l) files, exit $rc, $crashes file(s) in fuzz/artifacts/$t"
     echo "$line" | tee -a fuzz/logs/summary.txt
 done
