@@ -54,7 +54,10 @@ impl LoadedCase {
                 points: None,
             } => {
                 let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
-                Box::new(read_net(&path, block.unwrap_or(1))?)
+                Box::new(crate::case::within(
+                    &place,
+                    read_net(&path, block.unwrap_or(1)),
+                )?)
             }
             SurfaceSpec::HermiteNet {
                 file: None,
