@@ -21,7 +21,7 @@ use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep, VolumeResult
 use crate::elliptic::wall::{
     remap_volume, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES, TOLERANCE,
 };
-use crate::elliptic::wall_normal::{shift_tangential, TangentGoals};
+use crate::elliptic::wall_normal::{shift_tangential, TangentGoals, LAYER_CUTOFF};
 use crate::elliptic::{nested3d, poisson3d};
 use crate::grid::faces::{Faces, FACE_NAMES};
 use crate::solve::stencil19::Stencil19;
@@ -133,7 +133,13 @@ pub fn grid_volume_corrected(
         if tangent_goals.is_empty() {
             tangent_goals = ortho
                 .iter()
-                .map(|&f| (f, TangentGoals::new(&pg, &x, f, Some(f) != c.wall)))
+                .map(|&f| {
+                    let mut g = TangentGoals::new(&pg, &x, f, Some(f) != c.wall);
+                    if ortho.len() > 1 {
+                        g.cutoff = LAYER_CUTOFF;
+                    }
+                    (f, g)
+                })
                 .collect();
         }
         let err = match (&targets, c.wall) {

@@ -134,7 +134,15 @@ pub struct TangentGoals {
     /// [`MIN_GAP`] of the uncorrected one), not to [`CLAMP`] of the gaps: for interior faces,
     /// whose lines may have to turn by the whole angle of a neighbouring volume's lines.
     free: bool,
+    /// Nodes whose weight ψ is at most this are left alone (0: every node of the columns
+    /// moves towards its goal, the uncorrected offset where ψ is small). With several faces
+    /// corrected in one block, each moves only the nodes of its own layer
+    /// ([`LAYER_CUTOFF`]): a face's goals elsewhere would undo another face's shifts.
+    pub cutoff: f64,
 }
+
+/// [`TangentGoals::cutoff`] when several faces of a block are corrected.
+pub const LAYER_CUTOFF: f64 = 0.01;
 
 /// With [`TangentGoals::free`]: the smallest gap between neighbouring parameters along a line,
 /// as a fraction of the uncorrected gap (the gap [`CLAMP`] keeps at the least).
@@ -209,6 +217,7 @@ impl TangentGoals {
             per_col: dims[d] - 2,
             start: pg.clone(),
             free,
+            cutoff: 0.0,
         }
     }
 
@@ -250,7 +259,7 @@ pub fn shift_tangential(
         let (t0, psi) = (goals.t0[slot], goals.weight[slot]);
         let goal = t0.map(|c| c * (1.0 - psi));
         let Some(nv) = nrm else { return };
-        if psi <= 0.0 {
+        if psi <= goals.cutoff {
             return;
         }
         let len = norm(r);
