@@ -144,7 +144,7 @@ pub struct TangentGoals {
 /// [`TangentGoals::cutoff`] when several faces of a block are corrected.
 pub const LAYER_CUTOFF: f64 = 0.01;
 
-/// With [`TangentGoals::free`]: the smallest gap between neighbouring parameters along a line,
+/// With free goals (interior faces): the smallest gap between neighbouring parameters along a line,
 /// as a fraction of the uncorrected gap (the gap [`CLAMP`] keeps at the least).
 pub const MIN_GAP: f64 = 1.0 - 2.0 * CLAMP;
 
@@ -182,7 +182,7 @@ fn tangential(r: V, n: V) -> V {
 
 impl TangentGoals {
     /// Offsets t⁰ and weights ψ from grid `x` and its parameters `pg` (module docs); with
-    /// `free` the shifts are bounded by monotonicity only ([`TangentGoals::free`]).
+    /// `free` (interior faces) the shifts are bounded by monotonicity only.
     pub fn new(pg: &ParamGrid3, x: &Grid3, w: usize, free: bool) -> Self {
         let dims = x.dims();
         let (d, lo) = normal(w);
