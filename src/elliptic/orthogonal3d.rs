@@ -16,6 +16,7 @@
 
 use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
 use crate::algebraic::control3d::Control3;
+use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::wall::{
@@ -44,7 +45,8 @@ impl FaceCorrections {
 }
 
 /// Grids a volume block with the corrections `c` (module docs), from `start` (boundary nodes
-/// replaced by the faces') or, without one, from the nested solve of the uncorrected block.
+/// replaced by the faces') or, without one, from the nested solve of the uncorrected block
+/// (the plain one from the transfinite grid if that fails).
 /// The returned history is the concatenation of all solves.
 #[allow(clippy::too_many_arguments)]
 pub fn grid_volume_corrected(
@@ -90,18 +92,31 @@ pub fn grid_volume_corrected(
                 ),
             ))
         }
-        None => {
-            let (r, _) = nested3d::grid_volume_nested(
-                faces,
-                ControlKind::Algebraic,
-                solver,
-                &loose,
-                place,
-                progress,
-            )?;
-            append(&mut info, r.picard);
-            r.grid
-        }
+        None => match nested3d::grid_volume_nested(
+            faces,
+            ControlKind::Algebraic,
+            solver,
+            &loose,
+            place,
+            progress,
+        ) {
+            Ok((r, _)) => {
+                append(&mut info, r.picard);
+                r.grid
+            }
+            // A coarse level's start can be degenerate where the finest one is not: then
+            // the plain iteration from the transfinite grid.
+            Err(_) => {
+                let mut x = transfinite(faces);
+                faces.apply_to(&mut x);
+                let ctrl = Control3::from_algebraic(&pg);
+                append(
+                    &mut info,
+                    poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)?,
+                );
+                x
+            }
+        },
     };
     if !c.any() {
         return Ok(VolumeResult {
