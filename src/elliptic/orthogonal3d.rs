@@ -11,7 +11,9 @@
 //! the grid lines leave it along its normal ([`super::wall_normal`]). Each pass re-solves from
 //! the current grid; passes stop when the heights are within [`TOLERANCE`] and the first lines
 //! within [`ANGLE_TOLERANCE`] of the normal at every chosen face, after at most
-//! [`MAX_PASSES`]. A pass that folds the grid is not kept: the result is then the fold-free
+//! [`MAX_PASSES`]. A pass whose solve fails (a remap from a folded or strongly oblique grid
+//! can make the operator singular) is retried with its parameter update halved, up to three
+//! times. A pass that folds the grid is not kept: the result is then the fold-free
 //! pass with the smallest largest angle at the chosen faces.
 
 use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
@@ -28,6 +30,9 @@ use crate::grid::faces::{Faces, FACE_NAMES};
 use crate::solve::stencil19::Stencil19;
 use crate::solve::LinearSolver;
 use crate::{Error, Grid3, Result};
+
+/// Halvings of a pass's parameter update tried when its solve fails.
+const DAMPINGS: usize = 3;
 
 /// What a volume block's passes hold: the wall spacing at `wall`, orthogonality at the faces
 /// flagged in `orthogonal` (F1 … F6).
@@ -169,6 +174,7 @@ pub fn grid_volume_corrected(
             .map(|(f, g)| shift_tangential(&pg, &mut trial, &x, *f, g))
             .fold(0.0, f64::max);
         let done = err <= TOLERANCE && angle <= ANGLE_TOLERANCE;
+        let prev = pg.clone();
         if !done {
             pg = trial;
         }
@@ -198,22 +204,49 @@ pub fn grid_volume_corrected(
             );
             break;
         }
-        let ctrl = Control3::from_algebraic(&pg);
-        if !ctrl.all_finite() {
-            return Err(Error::input(
-                place,
-                format!(
-                    "the correction at {} made the control functions singular",
-                    ortho
-                        .iter()
-                        .chain(c.wall.iter())
-                        .map(|&f| FACE_NAMES[f])
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            ));
+        // The pass's solve; if it fails (a remap from a folded or strongly oblique grid can
+        // make the operator singular), the parameter update is halved up to DAMPINGS times.
+        let mut solved = None;
+        let x_before = x.clone();
+        for damping in 0..=DAMPINGS {
+            if damping > 0 {
+                for (new, old) in [
+                    (&mut pg.s, &prev.s),
+                    (&mut pg.t, &prev.t),
+                    (&mut pg.u, &prev.u),
+                ] {
+                    for (a, b) in new.iter_mut().zip(old) {
+                        *a = b + 0.5 * (*a - b);
+                    }
+                }
+                x.clone_from(&x_before);
+            }
+            let ctrl = Control3::from_algebraic(&pg);
+            let step = if ctrl.all_finite() {
+                poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)
+            } else {
+                Err(Error::input(
+                    place,
+                    format!(
+                        "the correction at {} made the control functions singular",
+                        ortho
+                            .iter()
+                            .chain(c.wall.iter())
+                            .map(|&f| FACE_NAMES[f])
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                ))
+            };
+            match step {
+                Ok(step) => {
+                    solved = Some(Ok(step));
+                    break;
+                }
+                Err(e) => solved = Some(Err(e)),
+            }
         }
-        match poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress) {
+        match solved.expect("at least one try") {
             Ok(step) => append(&mut info, step),
             Err(e) => match best.take() {
                 // A failed orthogonal pass: finish from the best fold-free grid.
