@@ -70,6 +70,8 @@ fn a_failed_run_leaves_no_output_at_all() {
     );
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     assert!(!d.path().join("start.x").exists() && !d.path().join("g.x").exists());
+    // ... nor says it did.
+    assert!(!text(&o).contains("wrote"), "{}", text(&o));
     // With --allow-folded both are written (exit code still 3).
     let o = ellipgrid(
         d.path(),

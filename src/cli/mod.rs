@@ -256,7 +256,8 @@ fn run(
         messages.extend(written.iter().map(|p| format!("wrote {}", p.display())));
         Ok(fold)
     });
-    if !quiet {
+    // The staged files exist only if the run succeeded (or folded with --allow-folded).
+    if !quiet && staged.is_ok() {
         messages.iter().for_each(|m| println!("{m}"));
     }
     let Some(gen) = gen else {
