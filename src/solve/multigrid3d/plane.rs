@@ -72,18 +72,18 @@ pub(super) fn orientations(lev: &Level) -> [bool; 3] {
             .filter(|&e| st[e] <= WEAK * min)
             .fold(0usize, |m, e| m | 1 << e)
     };
-    let mark = |mut seen: [bool; 8], row: &[f64; 27]| {
-        seen[mask_of(row)] = true;
+    let mark = |mut seen: [bool; 8], p: usize| {
+        seen[mask_of(&lev.row(p))] = true;
         seen
     };
     let merge = |a: [bool; 8], b: [bool; 8]| std::array::from_fn(|k| a[k] || b[k]);
     let seen: [bool; 8] = if use_par(lev.n()) {
-        lev.a
-            .par_iter()
+        (0..lev.n())
+            .into_par_iter()
             .fold(|| [false; 8], mark)
             .reduce(|| [false; 8], merge)
     } else {
-        lev.a.iter().fold([false; 8], mark)
+        (0..lev.n()).fold([false; 8], mark)
     };
     // smallest subset (then the one with planes normal to z first: contiguous planes)
     let mut best = 7usize;
@@ -136,7 +136,7 @@ impl Planes {
                     for u in 0..dims[e1] {
                         let mut idx = [0; 3];
                         (idx[d], idx[e1], idx[e2]) = (t, u, v);
-                        let row = &lev.a[idx[0] + nx * (idx[1] + ny * idx[2])];
+                        let row = lev.row(idx[0] + nx * (idx[1] + ny * idx[2]));
                         let out = &mut s.coefs_mut()[u + dims[e1] * v];
                         for &(m, k) in &pairs {
                             out[k] = row[m];
