@@ -16,7 +16,7 @@
 //! The 2D solves take their workspaces from the 2D solver's pool; each records its one-entry
 //! residual history (the only allocation of a smoothing step).
 
-use crate::solve::multigrid::{Cycle, MgParams, Multigrid, Smoother};
+use crate::solve::multigrid::{Cycle, MgParams, Multigrid, SharedPool, Smoother};
 use crate::solve::multigrid3d::level::{off27, Level};
 use crate::solve::multigrid3d::{use_par, SharedPtr};
 use crate::solve::stencil9::Stencil9;
@@ -101,6 +101,10 @@ pub(super) fn orientations(lev: &Level) -> [bool; 3] {
 #[derive(Debug, Default)]
 pub(super) struct Planes {
     mg: [Vec<Multigrid>; 3],
+    /// The cycle vectors of each orientation's planes (all of one size), shared: as many as
+    /// plane solves run at once (one per solve of each plane would hold the level's vectors
+    /// once per concurrent 3D solve).
+    pools: [SharedPool; 3],
     on: [bool; 3],
 }
 
@@ -115,9 +119,11 @@ impl Planes {
             let mgs = &mut self.mg[d];
             if !self.on[d] {
                 mgs.clear();
+                self.pools[d] = SharedPool::default();
                 continue;
             }
             if mgs.len() != dims[d] {
+                self.pools[d] = SharedPool::default();
                 *mgs = (0..dims[d])
                     .map(|_| Multigrid::new(plane_params()))
                     .collect();
@@ -235,7 +241,7 @@ impl Planes {
             let solve = |(t, (pb, px)): (usize, (&mut [f64], &mut [f64]))| {
                 if t % 2 == colour {
                     // a failed 2D cycle leaves px (a zero correction) untouched
-                    let _ = self.mg[d][t].solve(pb, px, &ctl);
+                    let _ = self.mg[d][t].solve_shared(&self.pools[d], pb, px, &ctl);
                 }
             };
             if par {
