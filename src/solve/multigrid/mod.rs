@@ -325,7 +325,10 @@ impl Multigrid {
         ctl: &SolveControl,
     ) -> Result<SolveInfo, SolveError> {
         let h = self.hierarchy()?;
-        assert!(!h.params.accelerate, "multigrid: shared workspaces serve plain cycles");
+        assert!(
+            !h.params.accelerate,
+            "multigrid: shared workspaces serve plain cycles"
+        );
         self.solve_cycles(h, &pool.0, b, x, ctl)
     }
 

@@ -282,8 +282,7 @@ impl Level {
                     let (ctr, up) = (lev.coef(p, CTR), lev.coef(p, sup));
                     let lo = if t > 0 { lev.coef(p, sub) } else { 0.0 };
                     let den = ctr - lo * cp;
-                    if !(den.is_finite() && den.abs() > 1e-300) || den.abs() <= 1e-14 * ctr.abs()
-                    {
+                    if !(den.is_finite() && den.abs() > 1e-300) || den.abs() <= 1e-14 * ctr.abs() {
                         return Err(SolveError::Singular(format!(
                             "multigrid: singular line system at unknown {p}"
                         )));

@@ -195,7 +195,13 @@ impl Multigrid3 {
                 let levels = dims
                     .iter()
                     .enumerate()
-                    .map(|(l, &d)| if l == 0 { Level::fine(d) } else { Level::new(d) })
+                    .map(|(l, &d)| {
+                        if l == 0 {
+                            Level::fine(d)
+                        } else {
+                            Level::new(d)
+                        }
+                    })
                     .collect();
                 (levels, dims.iter().map(|_| Planes::default()).collect())
             }

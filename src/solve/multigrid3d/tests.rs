@@ -448,7 +448,13 @@ fn fine_level_without_27_point_rows_builds_the_same_hierarchy() {
     for (p, row) in full.a.iter_mut().enumerate() {
         *row = fine.row(p);
     }
-    let inside = |p: usize| a.inside(p % dims[0], (p / dims[0]) % dims[1], p / (dims[0] * dims[1]));
+    let inside = |p: usize| {
+        a.inside(
+            p % dims[0],
+            (p / dims[0]) % dims[1],
+            p / (dims[0] * dims[1]),
+        )
+    };
     for p in 0..fine.n() {
         let ins = inside(p);
         let mut nonzero = 0;
@@ -460,7 +466,10 @@ fn fine_level_without_27_point_rows_builds_the_same_hierarchy() {
             nonzero += (want != 0.0) as usize;
         }
         let all = (0..27).filter(|&m| fine.coef(p, m) != 0.0).count();
-        assert_eq!(all, nonzero, "couplings outside the 19-point stencil at {p}");
+        assert_eq!(
+            all, nonzero,
+            "couplings outside the 19-point stencil at {p}"
+        );
     }
     for transpose in [false, true] {
         let (mut f, mut g) = (level::Level::fine(dims), level::Level::new(dims));
@@ -475,6 +484,9 @@ fn fine_level_without_27_point_rows_builds_the_same_hierarchy() {
         rap::galerkin(&f, &mut cf);
         rap::galerkin(&g, &mut cg);
         assert_eq!(cf.a, cg.a);
-        assert!(cf.a.iter().any(|r| r.iter().filter(|v| **v != 0.0).count() > 19));
+        assert!(cf
+            .a
+            .iter()
+            .any(|r| r.iter().filter(|v| **v != 0.0).count() > 19));
     }
 }

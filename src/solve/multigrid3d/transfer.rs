@@ -62,7 +62,11 @@ fn adjoint_row(lev: &Level, f: [usize; 3]) -> [f64; 27] {
     let [nx, ny, nz] = lev.dims;
     let mut row = [0.0; 27];
     for (m, o) in OFF.iter().enumerate() {
-        let g = [f[0] as isize + o[0], f[1] as isize + o[1], f[2] as isize + o[2]];
+        let g = [
+            f[0] as isize + o[0],
+            f[1] as isize + o[1],
+            f[2] as isize + o[2],
+        ];
         let inside = g[0] >= 0
             && g[1] >= 0
             && g[2] >= 0
@@ -70,7 +74,10 @@ fn adjoint_row(lev: &Level, f: [usize; 3]) -> [f64; 27] {
             && (g[1] as usize) < ny
             && (g[2] as usize) < nz;
         if inside {
-            row[m] = lev.coef(g[0] as usize + nx * (g[1] as usize + ny * g[2] as usize), 26 - m);
+            row[m] = lev.coef(
+                g[0] as usize + nx * (g[1] as usize + ny * g[2] as usize),
+                26 - m,
+            );
         }
     }
     row
