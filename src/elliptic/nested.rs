@@ -120,13 +120,17 @@ pub(crate) trait LevelGrid: Clone {
 }
 
 /// One block's nested problem: its finest transfinite grid and its levels' control functions.
-pub(crate) trait Problem {
+pub(crate) trait Problem: Sized {
     type Grid: LevelGrid;
     type Ctrl: Clone;
     /// The transfinite grid x_T of the finest level.
     fn transfinite(&self) -> &Self::Grid;
-    /// Control functions of level `lev` (stride 2^lev) of `dims` nodes; `place` for errors.
+    /// Control functions of a coarse level `lev ≥ 1` (stride 2^lev) of `dims` nodes; `place`
+    /// for errors.
     fn control(&self, lev: usize, dims: &[usize], place: &str) -> Result<Cow<'_, Self::Ctrl>>;
+    /// Control functions of the finest level (`dims` nodes); drops everything else of the
+    /// problem.
+    fn finest_control(self, dims: &[usize], place: &str) -> Result<Self::Ctrl>;
     /// The grid a level starts from when no coarser level has given it one (the coarsest
     /// level, or after a failed level): `None` for the transfinite grid.
     fn start(&self, _lev: usize) -> Option<Self::Grid> {
@@ -144,66 +148,30 @@ pub(crate) fn zip_coords(a: &[f64], b: &[f64], f: &(impl Fn(f64, f64) -> f64 + S
 /// level (`poisson2d::solve_timed` / `poisson3d::solve_timed`), returning its info and the
 /// work unit in seconds. The returned [`PicardInfo`] is that of the finest level, with
 /// `work_units` and `coarse_steps` filled in.
+///
+/// The finest level takes the problem's control functions by [`Problem::finest_control`],
+/// which drops the problem (its transfinite grid, the (s, t) grid): during the finest solve,
+/// the largest of the generation, only the grid, its control functions and the solver's own
+/// memory are held.
 pub(crate) fn run<P: Problem, const N: usize>(
-    p: &P,
+    p: P,
     sizes: &[[usize; N]],
     place: &str,
     t0: Instant,
     mut solve: impl FnMut(&mut P::Grid, &P::Ctrl, f64, &str, bool) -> Result<(PicardInfo, f64)>,
 ) -> Result<(Solved<P::Grid>, NestedInfo)> {
-    let tf = p.transfinite();
     let mut levels = Vec::new();
     // converged displacements of the two previous (coarser) levels, the last one first
     let mut prev: Option<(P::Grid, Option<P::Grid>)> = None;
-    for lev in (0..sizes.len()).rev() {
+    for lev in (1..sizes.len()).rev() {
         let tl = Instant::now();
         let dims = sizes[lev];
-        let t_lev = if lev == 0 {
-            tf.clone()
-        } else {
-            tf.subsample(1 << lev)
-        };
+        let t_lev = p.transfinite().subsample(1 << lev);
         let ctrl = p.control(lev, &dims, place)?;
-        let mut x = match &prev {
-            None => p.start(lev).unwrap_or_else(|| t_lev.clone()),
-            Some((d2, d4)) => {
-                let d = match d4 {
-                    Some(d4) => d2.zip_with(&d4.prolong(), richardson),
-                    None => d2.clone(),
-                };
-                t_lev.zip_with(&d.prolong(), |u, v| u + v)
-            }
-        };
-        let (lev_place, stop) = if lev == 0 {
-            (place.to_string(), 0.0)
-        } else {
-            let n: Vec<String> = dims.iter().map(usize::to_string).collect();
-            (
-                format!("{place} (nested level {})", n.join(" × ")),
-                COARSE_STOP,
-            )
-        };
-        let r = solve(&mut x, &ctrl, stop, &lev_place, lev == 0);
-        let seconds = tl.elapsed().as_secs_f64();
-        if lev == 0 {
-            let (mut picard, wu) = r?;
-            levels.push(LevelInfo {
-                dims: dims.to_vec(),
-                steps: picard.steps,
-                converged: picard.converged,
-                seconds,
-            });
-            let total = t0.elapsed().as_secs_f64();
-            picard.work_units = Some(total / wu);
-            picard.coarse_steps = levels[..levels.len() - 1].iter().map(|l| l.steps).collect();
-            let info = NestedInfo {
-                levels,
-                seconds: total,
-                work_unit_seconds: wu,
-                work_units: total / wu,
-            };
-            return Ok((Solved { grid: x, picard }, info));
-        }
+        let mut x = level_start(&p, lev, &t_lev, &prev);
+        let n: Vec<String> = dims.iter().map(usize::to_string).collect();
+        let lev_place = format!("{place} (nested level {})", n.join(" × "));
+        let r = solve(&mut x, &ctrl, COARSE_STOP, &lev_place, false);
         let (steps, converged) = match &r {
             Ok((p, _)) => (p.steps, p.converged),
             Err(_) => (0, false),
@@ -212,7 +180,7 @@ pub(crate) fn run<P: Problem, const N: usize>(
             dims: dims.to_vec(),
             steps,
             converged,
-            seconds,
+            seconds: tl.elapsed().as_secs_f64(),
         });
         prev = if converged {
             let d = x.zip_with(&t_lev, |u, v| u - v);
@@ -221,7 +189,49 @@ pub(crate) fn run<P: Problem, const N: usize>(
             None
         };
     }
-    unreachable!("the finest level returns")
+    let tl = Instant::now();
+    let dims = sizes[0];
+    let mut x = level_start(&p, 0, p.transfinite(), &prev);
+    drop(prev);
+    let ctrl = p.finest_control(&dims, place)?;
+    let (mut picard, wu) = solve(&mut x, &ctrl, 0.0, place, true)?;
+    levels.push(LevelInfo {
+        dims: dims.to_vec(),
+        steps: picard.steps,
+        converged: picard.converged,
+        seconds: tl.elapsed().as_secs_f64(),
+    });
+    let total = t0.elapsed().as_secs_f64();
+    picard.work_units = Some(total / wu);
+    picard.coarse_steps = levels[..levels.len() - 1].iter().map(|l| l.steps).collect();
+    let info = NestedInfo {
+        levels,
+        seconds: total,
+        work_unit_seconds: wu,
+        work_units: total / wu,
+    };
+    Ok((Solved { grid: x, picard }, info))
+}
+
+/// The grid level `lev` starts from: the transfinite grid `t_lev` of the level plus the
+/// prolonged (Richardson-extrapolated) displacement of the coarser levels, or without them
+/// the problem's start grid ([`Problem::start`]) or `t_lev`.
+fn level_start<P: Problem>(
+    p: &P,
+    lev: usize,
+    t_lev: &P::Grid,
+    prev: &Option<(P::Grid, Option<P::Grid>)>,
+) -> P::Grid {
+    match prev {
+        None => p.start(lev).unwrap_or_else(|| t_lev.clone()),
+        Some((d2, d4)) => {
+            let d = match d4 {
+                Some(d4) => d2.zip_with(&d4.prolong(), richardson),
+                None => d2.clone(),
+            };
+            t_lev.zip_with(&d.prolong(), |u, v| u + v)
+        }
+    }
 }
 
 /// Richardson's step for an O(h²) difference between the displacement `d2` (level 2h) and
@@ -265,10 +275,17 @@ impl<const D: usize> Problem for Block<D> {
     /// [19, 20] of the fine (s, t) grid sub-sampled, or zero (Laplace).
     fn control(&self, lev: usize, dims: &[usize], _place: &str) -> Result<Cow<'_, Control2>> {
         Ok(Cow::Owned(match &self.pg {
-            Some(pg) if lev == 0 => Control2::from_algebraic(pg),
             Some(pg) => Control2::from_algebraic(&subsample_param(pg, 1 << lev)),
             None => Control2::zeros([dims[0], dims[1]]),
         }))
+    }
+
+    /// [19, 20] of the (s, t) grid, or zero (Laplace).
+    fn finest_control(self, dims: &[usize], _place: &str) -> Result<Control2> {
+        Ok(match &self.pg {
+            Some(pg) => Control2::from_algebraic(pg),
+            None => Control2::zeros([dims[0], dims[1]]),
+        })
     }
 
     fn start(&self, lev: usize) -> Option<Grid2<D>> {
@@ -302,7 +319,7 @@ pub fn grid_block_nested<const D: usize>(
         pg,
         start: None,
     };
-    run(&block, &sizes, place, t0, |x, ctrl, stop, at, _| {
+    run(block, &sizes, place, t0, |x, ctrl, stop, at, _| {
         poisson2d::solve_timed(x, ctrl, solver, params, stop, at)
     })
 }
@@ -330,7 +347,7 @@ pub(crate) fn solve_nested_from<const D: usize>(
         pg: Some(pg),
         start: Some(start),
     };
-    run(&block, &sizes, place, t0, |x, ctrl, stop, at, _| {
+    run(block, &sizes, place, t0, |x, ctrl, stop, at, _| {
         poisson2d::solve_timed(x, ctrl, solver, params, stop, at)
     })
 }

@@ -102,13 +102,17 @@ impl Problem for Volume {
     /// [83, 84] of the bilinear (s, t, u) grid of the sub-sampled edge functions, or zero.
     fn control(&self, lev: usize, dims: &[usize], place: &str) -> Result<Cow<'_, Control3>> {
         Ok(match &self.ef {
-            _ if lev == 0 => Cow::Borrowed(&self.fine_ctrl),
             Some(ef) => Cow::Owned(Control3::from_algebraic(&bilinear(
                 &subsample_edges(ef, 1 << lev),
                 place,
             )?)),
             None => Cow::Owned(Control3::zeros([dims[0], dims[1], dims[2]])),
         })
+    }
+
+    /// The finest level's control functions, computed up front (see [`grid_volume_nested`]).
+    fn finest_control(self, _dims: &[usize], _place: &str) -> Result<Control3> {
+        Ok(self.fine_ctrl)
     }
 }
 
@@ -146,7 +150,7 @@ pub fn grid_volume_nested(
         ef,
         fine_ctrl,
     };
-    run(&volume, &sizes, place, t0, |x, ctrl, stop, at, finest| {
+    run(volume, &sizes, place, t0, |x, ctrl, stop, at, finest| {
         if finest {
             poisson3d::solve_timed(x, ctrl, solver, params, stop, at, progress)
         } else {

@@ -104,7 +104,7 @@ impl Hierarchy {
                 let along_x = (i == 0) != (post && POST_REVERSED);
                 for c in [FIRST_COLOUR, 1 - FIRST_COLOUR] {
                     if along_x {
-                        xzebra(&lev.xop, nx, ny, x, b, c);
+                        xzebra(&lev.a, &lev.xop, nx, ny, x, b, c);
                         last = Zeroed::Rows(c);
                     } else {
                         yzebra(&lev.yop, nx, ny, x, b, c);

@@ -223,6 +223,11 @@ impl<W> Pool<W> {
     }
 }
 
+/// Cycle workspaces shared by several [`Multigrid`]s of one size
+/// ([`Multigrid::solve_shared`]).
+#[derive(Debug, Default)]
+pub(crate) struct SharedPool(Pool<Workspace>);
+
 /// A raw pointer that may cross threads; users guarantee disjoint writes.
 #[derive(Clone, Copy)]
 pub(crate) struct SharedPtr(pub(crate) *mut f64);
@@ -309,6 +314,24 @@ impl Multigrid {
         self.pool.take(|ws| ws.fits(h), || Workspace::new(h))
     }
 
+    /// Solves as [`LinearSolver::solve`], the cycles' vectors taken from `pool` instead of
+    /// this solver's own: solvers of equal size (the planes of one orientation of a 3D level)
+    /// then share as many workspaces as run at once, not one per solver and concurrent solve.
+    pub(crate) fn solve_shared(
+        &self,
+        pool: &SharedPool,
+        b: &[f64],
+        x: &mut [f64],
+        ctl: &SolveControl,
+    ) -> Result<SolveInfo, SolveError> {
+        let h = self.hierarchy()?;
+        assert!(
+            !h.params.accelerate,
+            "multigrid: shared workspaces serve plain cycles"
+        );
+        self.solve_cycles(h, &pool.0, b, x, ctl)
+    }
+
     /// `out ≈ A⁻¹ rhs` by one cycle from zero (padded vectors of the fine grid).
     fn precondition(&self, h: &Hierarchy, ws: &mut Workspace, rhs: &[f64], out: &mut [f64]) {
         let v = &mut ws.lv[0];
@@ -322,6 +345,7 @@ impl Multigrid {
     fn solve_cycles(
         &self,
         h: &Hierarchy,
+        pool: &Pool<Workspace>,
         b: &[f64],
         x: &mut [f64],
         ctl: &SolveControl,
@@ -329,7 +353,7 @@ impl Multigrid {
         let l0 = &h.levels[0];
         let (nx, ny, n) = (l0.nx, l0.ny, l0.n());
         let pd = pad(nx);
-        let mut ws = self.take_workspace(h);
+        let mut ws = pool.take(|ws| ws.fits(h), || Workspace::new(h));
         let res = (|| {
             let v = &mut ws.lv[0];
             v.b[pd..pd + n].copy_from_slice(b);
@@ -353,7 +377,7 @@ impl Multigrid {
             x.copy_from_slice(&ws.lv[0].x[pd..pd + n]);
             Ok(info)
         })();
-        self.pool.put(ws);
+        pool.put(ws);
         res
     }
 }
@@ -391,7 +415,7 @@ impl LinearSolver for Multigrid {
             // the clipped fine operator of the hierarchy is the Krylov operator
             self.bicgstab(b, x, ctl)
         } else {
-            self.solve_cycles(h, b, x, ctl)
+            self.solve_cycles(h, &self.pool, b, x, ctl)
         }
     }
 

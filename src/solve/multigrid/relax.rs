@@ -3,9 +3,10 @@
 //! A zebra half sweep relaxes every second line (one colour) exactly: the line's tridiagonal
 //! system (its coefficients along the line) is solved by the Thomas algorithm with the other
 //! colour's values frozen. Lines of one colour are independent, so they run in parallel.
-//! The Thomas pivots are factored once per operator into *line operators* (the stencil scaled
-//! by the inverse pivots, [`factor_x`], [`factor_y`]); a sweep only eliminates the right-hand
-//! side. The y-line operator is stored by column blocks ([`YLineOp`]): within a block of
+//! The Thomas pivots are factored once per operator: for x-lines the inverse pivots and the
+//! modified upper coefficients ([`factor_x`], the sweep reads the stencil itself), for y-lines
+//! a *line operator* (the stencil scaled by the inverse pivots, [`factor_y`]); a sweep only
+//! eliminates the right-hand side. The y-line operator is stored by column blocks ([`YLineOp`]): within a block of
 //! [`YLineOp::W`] columns, one colour's records of all rows are contiguous, so that a half
 //! sweep streams through memory while the block's columns stay in cache between the forward
 //! elimination and the back substitution.
@@ -42,17 +43,19 @@ fn pivot_error(i: usize, j: usize, piv: f64, dir: char) -> SolveError {
 /// Rows of stencils.
 type Stencils = [[f64; 9]];
 
-/// Builds the x-line operator of `a`: per unknown, the Thomas factors of its row's
-/// tridiagonal system `(a_W, a_C, a_E)` with the stencil scaled by the inverse pivot:
-/// `[SW, S, SE, W]·inv, inv, cp = a_E·inv, [NW, N, NE]·inv` (natural layout).
+/// Builds the x-line factors of `a`: per unknown, the Thomas factors of its row's tridiagonal
+/// system `(a_W, a_C, a_E)`, `[inv, cp]` with `inv` the inverse pivot and `cp = a_E·inv`. The
+/// sweep reads the couplings from `a` itself: a scaled copy of the stencil (as the y-lines
+/// keep, [`YLineOp`]) would cost 56 more bytes per unknown, and the x-lines stream `a` in its
+/// natural order anyway.
 pub(super) fn factor_x(
     a: &[[f64; 9]],
     nx: usize,
     ny: usize,
-    xop: &mut Vec<[f64; 9]>,
+    xop: &mut Vec<[f64; 2]>,
 ) -> Result<(), SolveError> {
-    xop.resize(nx * ny, [0.0; 9]);
-    let work = |(j, (op, a)): (usize, (&mut [[f64; 9]], &Stencils))| {
+    xop.resize(nx * ny, [0.0; 2]);
+    let work = |(j, (op, a)): (usize, (&mut [[f64; 2]], &Stencils))| {
         let mut cprev = 0.0;
         for i in 0..nx {
             let m = &a[i];
@@ -62,17 +65,7 @@ pub(super) fn factor_x(
             }
             let v = 1.0 / piv;
             cprev = m[5] * v;
-            op[i] = [
-                m[0] * v,
-                m[1] * v,
-                m[2] * v,
-                m[3] * v,
-                v,
-                cprev,
-                m[6] * v,
-                m[7] * v,
-                m[8] * v,
-            ];
+            op[i] = [v, cprev];
         }
         Ok(())
     };
@@ -220,53 +213,58 @@ pub(super) fn factor_y(
     }
 }
 
-/// One x-line of row `j`: solves its tridiagonal system with rows `j ± 1` frozen.
+/// One x-line of row `j`: solves its tridiagonal system with rows `j ± 1` frozen (`a`: the
+/// row's stencils, `fac`: its [`factor_x`] factors).
 ///
 /// # Safety
 /// `x` points at unknown `(0, j)` of a padded vector; no other thread reads or writes row `j`
 /// or writes rows `j ± 1` meanwhile.
 #[inline]
-unsafe fn xline(op: &[[f64; 9]], b: &[f64], x: *mut f64, nx: usize) {
+unsafe fn xline(a: &[[f64; 9]], fac: &[[f64; 2]], b: &[f64], x: *mut f64, nx: usize) {
     let s = std::slice::from_raw_parts(x.sub(nx), nx);
     let n = std::slice::from_raw_parts(x.add(nx), nx);
     let c = std::slice::from_raw_parts_mut(x, nx);
-    let (op, b) = (&op[..nx], &b[..nx]);
+    let (a, fac, b) = (&a[..nx], &fac[..nx], &b[..nx]);
     if nx == 1 {
-        let m = &op[0];
-        c[0] = m[4] * b[0] - m[1] * s[0] - m[7] * n[0];
+        let m = &a[0];
+        c[0] = (b[0] - m[1] * s[0] - m[7] * n[0]) * fac[0][0];
         return;
     }
     // forward elimination, i = 0 (no west neighbours), interior, i = nx - 1 (no east)
-    let m = &op[0];
-    let mut prev = m[4] * b[0] - m[1] * s[0] - m[2] * s[1] - m[7] * n[0] - m[8] * n[1];
+    let m = &a[0];
+    let mut prev = (b[0] - m[1] * s[0] - m[2] * s[1] - m[7] * n[0] - m[8] * n[1]) * fac[0][0];
     c[0] = prev;
     for i in 1..nx - 1 {
-        let m = &op[i];
-        prev = m[4] * b[i]
+        let m = &a[i];
+        prev = (b[i]
             - m[0] * s[i - 1]
             - m[1] * s[i]
             - m[2] * s[i + 1]
             - m[6] * n[i - 1]
             - m[7] * n[i]
             - m[8] * n[i + 1]
-            - m[3] * prev;
+            - m[3] * prev)
+            * fac[i][0];
         c[i] = prev;
     }
     let i = nx - 1;
-    let m = &op[i];
-    prev =
-        m[4] * b[i] - m[0] * s[i - 1] - m[1] * s[i] - m[6] * n[i - 1] - m[7] * n[i] - m[3] * prev;
+    let m = &a[i];
+    prev = (b[i] - m[0] * s[i - 1] - m[1] * s[i] - m[6] * n[i - 1] - m[7] * n[i] - m[3] * prev)
+        * fac[i][0];
     c[i] = prev;
     // back substitution
     for i in (0..nx - 1).rev() {
-        prev = c[i] - op[i][5] * prev;
+        prev = c[i] - fac[i][1] * prev;
         c[i] = prev;
     }
 }
 
-/// Zebra x-line half sweep over the rows `j ≡ colour (mod 2)` with x-line operator `xop`.
+/// Zebra x-line half sweep over the rows `j ≡ colour (mod 2)` of operator `a` with its x-line
+/// factors `xop`.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn xzebra(
-    xop: &[[f64; 9]],
+    a: &[[f64; 9]],
+    xop: &[[f64; 2]],
     nx: usize,
     ny: usize,
     x: &mut [f64],
@@ -277,6 +275,7 @@ pub(super) fn xzebra(
     assert_eq!(x.len(), padded_len(nx, ny));
     assert_eq!(b.len(), padded_len(nx, ny));
     assert_eq!(xop.len(), nx * ny);
+    assert_eq!(a.len(), nx * ny);
     let xp = SharedPtr(unsafe { x.as_mut_ptr().add(pd) });
     let b = &b[pd..pd + nx * ny];
     let count = (ny + 1 - colour) / 2;
@@ -285,7 +284,15 @@ pub(super) fn xzebra(
         let r = j * nx..(j + 1) * nx;
         // SAFETY: rows of one colour are disjoint and read only rows of the other colour;
         // rows -1 and ny lie in the padding.
-        unsafe { xline(&xop[r.clone()], &b[r], xp.get().add(j * nx), nx) }
+        unsafe {
+            xline(
+                &a[r.clone()],
+                &xop[r.clone()],
+                &b[r],
+                xp.get().add(j * nx),
+                nx,
+            )
+        }
     };
     if use_par(nx * ny) {
         let min_len = (4096 / nx).max(1);

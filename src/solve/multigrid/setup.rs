@@ -19,9 +19,9 @@ pub(super) struct Level {
     pub ny: usize,
     /// The operator (level 0: a clipped copy of the caller's).
     pub a: Vec<[f64; 9]>,
-    /// x-line and y-line operators of the smoother (see `relax.rs`; empty if the smoother
-    /// does not use them, and on the coarsest level).
-    pub xop: Vec<[f64; 9]>,
+    /// x-line factors and y-line operator of the smoother (see `relax.rs`; empty if the
+    /// smoother does not use them, and on the coarsest level).
+    pub xop: Vec<[f64; 2]>,
     pub yop: YLineOp,
     /// Prolongation and restriction stars to the next coarser level (one per coarse point;
     /// empty on the coarsest level).
@@ -81,7 +81,7 @@ impl Hierarchy {
                 };
                 if !coarsest {
                     if params.smoother.uses_x() {
-                        lev.xop.resize(nx * ny, [0.0; 9]);
+                        lev.xop.resize(nx * ny, [0.0; 2]);
                     }
                     if params.smoother.uses_y() {
                         lev.yop.resize(nx * ny);

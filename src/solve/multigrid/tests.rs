@@ -568,8 +568,8 @@ fn kernel_timings() {
     let (x, r) = (&mut v.x, &mut v.r);
     time("copy (stream)", &mut || r.copy_from_slice(&b));
     time("xzebra both", &mut || {
-        relax::xzebra(&lev.xop, n, n, x, &b, 0);
-        relax::xzebra(&lev.xop, n, n, x, &b, 1);
+        relax::xzebra(&lev.a, &lev.xop, n, n, x, &b, 0);
+        relax::xzebra(&lev.a, &lev.xop, n, n, x, &b, 1);
     });
     time("yzebra both", &mut || {
         relax::yzebra(&lev.yop, n, n, x, &b, 0);
@@ -743,7 +743,7 @@ fn half_residuals_match_full_residual() {
         let mut x = vec![0.0; len];
         let (mut rf, mut rh) = (vec![0.0; len], vec![0.0; len]);
         for colour in [0, 1] {
-            relax::xzebra(&lev.xop, nx, ny, &mut x, &b, colour);
+            relax::xzebra(&lev.a, &lev.xop, nx, ny, &mut x, &b, colour);
             let full = relax::residual(&lev.a, None, nx, ny, &x, &b, &mut rf, relax::Zeroed::None);
             let zeroed = relax::Zeroed::Rows(colour);
             let half = relax::residual(&lev.a, Some(&lev.yop), nx, ny, &x, &b, &mut rh, zeroed);

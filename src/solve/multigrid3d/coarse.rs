@@ -53,8 +53,9 @@ impl CoarseLu {
             let mut t = Vec::with_capacity(27 * n);
             for p in 0..n {
                 for (m, c) in cols(p) {
-                    if lev.a[p][m] != 0.0 {
-                        t.push(Triplet::new(p, c, lev.a[p][m]));
+                    let v = lev.coef(p, m);
+                    if v != 0.0 {
+                        t.push(Triplet::new(p, c, v));
                     }
                 }
             }
@@ -63,7 +64,7 @@ impl CoarseLu {
         let mut lu = vec![0.0; n * n];
         for p in 0..n {
             for (m, c) in cols(p) {
-                lu[p * n + c] = lev.a[p][m];
+                lu[p * n + c] = lev.coef(p, m);
             }
         }
         let mut swap = vec![0; n];

@@ -91,7 +91,7 @@ fn setup_phases() {
     let g = bench_block(n);
     let a = picard_operator(&g, true);
     let t = std::time::Instant::now();
-    let mut lev = Level::new(a.dims());
+    let mut lev = Level::fine(a.dims());
     lev.embed(&a).unwrap();
     eprintln!("embed {:.3}", t.elapsed().as_secs_f64());
     let t = std::time::Instant::now();

@@ -28,6 +28,29 @@ pub(super) const fn s27(di: isize, dj: isize, dk: isize) -> usize {
 /// Centre slot of a 27-point stencil; the opposite of slot `m` is `26 − m`.
 pub(super) const CTR: usize = 13;
 
+/// The 27-point slot of each of the 19 slots of [`Stencil19`].
+const SLOTS19: [usize; 19] = {
+    let mut t = [0; 19];
+    let mut m = 0;
+    while m < 19 {
+        let o = OFFSETS[m];
+        t[m] = s27(o[0] as isize, o[1] as isize, o[2] as isize);
+        m += 1;
+    }
+    t
+};
+
+/// The 19-point slot of each 27-point slot, if any.
+const INDEX19: [Option<usize>; 27] = {
+    let mut t = [None; 27];
+    let mut m = 0;
+    while m < 19 {
+        t[SLOTS19[m]] = Some(m);
+        m += 1;
+    }
+    t
+};
+
 /// Offset of slot `m`.
 #[inline]
 pub(super) const fn off27(m: usize) -> [isize; 3] {
@@ -38,14 +61,16 @@ pub(super) const fn off27(m: usize) -> [isize; 3] {
     ]
 }
 
-/// The 27-point and 19-point rows of one k-plane and the rows they are copied from.
-type PlaneRows<'a> = ((&'a mut [[f64; 27]], &'a mut [[f64; 19]]), &'a [[f64; 19]]);
+/// The 19-point rows of one k-plane and the rows they are copied from.
+type PlaneRows<'a> = (&'a mut [[f64; 19]], &'a [[f64; 19]]);
 
 /// One level: operator, line factors and (if not the coarsest) the transfer stars to the next.
 #[derive(Debug)]
 pub(super) struct Level {
     pub dims: [usize; 3],
-    /// Rows of the 27-point operator (unpadded numbering, i fastest).
+    /// Rows of the 27-point operator (unpadded numbering, i fastest); empty on the fine
+    /// level, whose operator is `a19` (its 27-point rows, [`Level::row`], are expanded where
+    /// a setup needs them: keeping them would cost 216 bytes per fine unknown).
     pub a: Vec<[f64; 27]>,
     /// The fine level's operator as given, 19-point rows (couplings leaving the grid zeroed;
     /// empty on coarse levels): the residuals and plane sweeps of a cycle read these, 152
@@ -74,8 +99,50 @@ impl Level {
         }
     }
 
+    /// The fine level of a hierarchy: no 27-point rows (see [`Level::a`]); [`Level::embed`]
+    /// gives it its operator.
+    pub fn fine(dims: [usize; 3]) -> Self {
+        Level {
+            dims,
+            a: Vec::new(),
+            a19: Vec::new(),
+            fac: std::array::from_fn(|_| Vec::new()),
+            p: Vec::new(),
+            r: Vec::new(),
+        }
+    }
+
     pub fn n(&self) -> usize {
-        self.a.len()
+        self.dims.iter().product()
+    }
+
+    /// Row `p` of the operator as 27 couplings: a coarse level's row, or the fine level's
+    /// 19-point row expanded (the slots outside the 19-point stencil are zero).
+    #[inline]
+    pub fn row(&self, p: usize) -> [f64; 27] {
+        if self.a19.is_empty() {
+            self.a[p]
+        } else {
+            let src = &self.a19[p];
+            let mut r = [0.0; 27];
+            for (m, &v) in src.iter().enumerate() {
+                r[SLOTS19[m]] = v;
+            }
+            r
+        }
+    }
+
+    /// Coupling `m` (27-point slot) of row `p`.
+    #[inline]
+    pub fn coef(&self, p: usize, m: usize) -> f64 {
+        if self.a19.is_empty() {
+            self.a[p][m]
+        } else {
+            match INDEX19[m] {
+                Some(t) => self.a19[p][t],
+                None => 0.0,
+            }
+        }
     }
 
     /// Length of a padded vector.
@@ -148,46 +215,37 @@ impl Level {
         s
     }
 
-    /// Copies the 19-point operator into the 27-point rows and the 19-point rows of the fine
-    /// level (couplings leaving the grid dropped).
+    /// Copies the 19-point operator into the 19-point rows of the fine level (couplings
+    /// leaving the grid dropped) and drops its 27-point rows, if any.
     pub fn embed(&mut self, a: &Stencil19) -> Result<(), SolveError> {
         let [nx, ny, _] = self.dims;
-        let slots: [usize; 19] = std::array::from_fn(|m| {
-            s27(
-                OFFSETS[m][0] as isize,
-                OFFSETS[m][1] as isize,
-                OFFSETS[m][2] as isize,
-            )
-        });
         let plane = nx * ny;
-        self.a19.resize(self.a.len(), [0.0; 19]);
-        let fill = |(k, ((rows, rows19), src)): (usize, PlaneRows)| {
+        let n = self.n();
+        self.a = Vec::new();
+        self.a19.resize(n, [0.0; 19]);
+        let fill = |(k, (rows19, src)): (usize, PlaneRows)| {
             let mut bad = None;
-            for (q, ((row, row19), src)) in rows.iter_mut().zip(rows19).zip(src).enumerate() {
+            for (q, (row19, src)) in rows19.iter_mut().zip(src).enumerate() {
                 let ins = a.inside(q % nx, q / nx, k);
-                *row = [0.0; 27];
                 for m in 0..19 {
                     row19[m] = if ins[m] { src[m] } else { 0.0 };
-                    row[slots[m]] = row19[m];
                 }
-                if bad.is_none() && !row.iter().all(|v| v.is_finite()) {
+                if bad.is_none() && !row19.iter().all(|v| v.is_finite()) {
                     bad = Some(k * plane + q);
                 }
             }
             bad
         };
-        let bad = if use_par(self.a.len()) {
-            self.a
+        let bad = if use_par(n) {
+            self.a19
                 .par_chunks_mut(plane)
-                .zip(self.a19.par_chunks_mut(plane))
                 .zip(a.coefs().par_chunks(plane))
                 .enumerate()
                 .filter_map(fill)
                 .min()
         } else {
-            self.a
+            self.a19
                 .chunks_mut(plane)
-                .zip(self.a19.chunks_mut(plane))
                 .zip(a.coefs().chunks(plane))
                 .enumerate()
                 .filter_map(fill)
@@ -205,9 +263,11 @@ impl Level {
     pub fn factor_lines(&mut self) -> Result<(), SolveError> {
         let [nx, ny, nz] = self.dims;
         let dims = self.dims;
-        let a = &self.a;
-        for (d, fac) in self.fac.iter_mut().enumerate() {
-            fac.resize(a.len(), [0.0; 2]);
+        let n = self.n();
+        let mut facs = std::mem::take(&mut self.fac);
+        let lev: &Level = self;
+        for (d, fac) in facs.iter_mut().enumerate() {
+            fac.resize(n, [0.0; 2]);
             let (sub, sup) = line_slots(d);
             let stride = [1, nx, nx * ny][d];
             let len = dims[d];
@@ -219,29 +279,32 @@ impl Level {
                 let mut cp = 0.0;
                 for t in 0..len {
                     let p = p0 + t * stride;
-                    let row = &a[p];
-                    let lo = if t > 0 { row[sub] } else { 0.0 };
-                    let den = row[CTR] - lo * cp;
-                    if !(den.is_finite() && den.abs() > 1e-300)
-                        || den.abs() <= 1e-14 * row[CTR].abs()
-                    {
+                    let (ctr, up) = (lev.coef(p, CTR), lev.coef(p, sup));
+                    let lo = if t > 0 { lev.coef(p, sub) } else { 0.0 };
+                    let den = ctr - lo * cp;
+                    if !(den.is_finite() && den.abs() > 1e-300) || den.abs() <= 1e-14 * ctr.abs() {
                         return Err(SolveError::Singular(format!(
                             "multigrid: singular line system at unknown {p}"
                         )));
                     }
                     let inv = 1.0 / den;
-                    cp = if t + 1 < len { row[sup] * inv } else { 0.0 };
+                    cp = if t + 1 < len { up * inv } else { 0.0 };
                     // SAFETY: every unknown lies on exactly one line of direction d.
                     unsafe { *fp.get().add(p) = [cp, inv] };
                 }
                 Ok(())
             };
-            if use_par(a.len()) {
-                line_starts.par_iter().try_for_each(one)?;
+            let res = if use_par(n) {
+                line_starts.par_iter().try_for_each(one)
             } else {
-                line_starts.iter().try_for_each(one)?;
+                line_starts.iter().try_for_each(one)
+            };
+            if let Err(e) = res {
+                self.fac = facs;
+                return Err(e);
             }
         }
+        self.fac = facs;
         Ok(())
     }
 
@@ -332,7 +395,7 @@ impl Level {
                     let mut prev = 0.0;
                     for t in 0..len {
                         let (p, q) = (p0 + t * ps[d], q0 + t * qsd);
-                        let row = &self.a[p];
+                        let row = self.row(p);
                         let mut s = b[p];
                         for &m in &others {
                             s -= row[m] * *x.offset(q as isize + qo[m]);

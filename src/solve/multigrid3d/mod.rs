@@ -192,7 +192,17 @@ impl Multigrid3 {
             Some(h) if reuse => (h.levels, h.planes),
             _ => {
                 self.pool.clear();
-                let levels = dims.iter().map(|&d| Level::new(d)).collect();
+                let levels = dims
+                    .iter()
+                    .enumerate()
+                    .map(|(l, &d)| {
+                        if l == 0 {
+                            Level::fine(d)
+                        } else {
+                            Level::new(d)
+                        }
+                    })
+                    .collect();
                 (levels, dims.iter().map(|_| Planes::default()).collect())
             }
         };

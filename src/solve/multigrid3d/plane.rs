@@ -16,7 +16,7 @@
 //! The 2D solves take their workspaces from the 2D solver's pool; each records its one-entry
 //! residual history (the only allocation of a smoothing step).
 
-use crate::solve::multigrid::{Cycle, MgParams, Multigrid, Smoother};
+use crate::solve::multigrid::{Cycle, MgParams, Multigrid, SharedPool, Smoother};
 use crate::solve::multigrid3d::level::{off27, Level};
 use crate::solve::multigrid3d::{use_par, SharedPtr};
 use crate::solve::stencil9::Stencil9;
@@ -72,18 +72,18 @@ pub(super) fn orientations(lev: &Level) -> [bool; 3] {
             .filter(|&e| st[e] <= WEAK * min)
             .fold(0usize, |m, e| m | 1 << e)
     };
-    let mark = |mut seen: [bool; 8], row: &[f64; 27]| {
-        seen[mask_of(row)] = true;
+    let mark = |mut seen: [bool; 8], p: usize| {
+        seen[mask_of(&lev.row(p))] = true;
         seen
     };
     let merge = |a: [bool; 8], b: [bool; 8]| std::array::from_fn(|k| a[k] || b[k]);
     let seen: [bool; 8] = if use_par(lev.n()) {
-        lev.a
-            .par_iter()
+        (0..lev.n())
+            .into_par_iter()
             .fold(|| [false; 8], mark)
             .reduce(|| [false; 8], merge)
     } else {
-        lev.a.iter().fold([false; 8], mark)
+        (0..lev.n()).fold([false; 8], mark)
     };
     // smallest subset (then the one with planes normal to z first: contiguous planes)
     let mut best = 7usize;
@@ -101,6 +101,10 @@ pub(super) fn orientations(lev: &Level) -> [bool; 3] {
 #[derive(Debug, Default)]
 pub(super) struct Planes {
     mg: [Vec<Multigrid>; 3],
+    /// The cycle vectors of each orientation's planes (all of one size), shared: as many as
+    /// plane solves run at once (one per solve of each plane would hold the level's vectors
+    /// once per concurrent 3D solve).
+    pools: [SharedPool; 3],
     on: [bool; 3],
 }
 
@@ -115,9 +119,11 @@ impl Planes {
             let mgs = &mut self.mg[d];
             if !self.on[d] {
                 mgs.clear();
+                self.pools[d] = SharedPool::default();
                 continue;
             }
             if mgs.len() != dims[d] {
+                self.pools[d] = SharedPool::default();
                 *mgs = (0..dims[d])
                     .map(|_| Multigrid::new(plane_params()))
                     .collect();
@@ -136,7 +142,7 @@ impl Planes {
                     for u in 0..dims[e1] {
                         let mut idx = [0; 3];
                         (idx[d], idx[e1], idx[e2]) = (t, u, v);
-                        let row = &lev.a[idx[0] + nx * (idx[1] + ny * idx[2])];
+                        let row = lev.row(idx[0] + nx * (idx[1] + ny * idx[2]));
                         let out = &mut s.coefs_mut()[u + dims[e1] * v];
                         for &(m, k) in &pairs {
                             out[k] = row[m];
@@ -235,7 +241,7 @@ impl Planes {
             let solve = |(t, (pb, px)): (usize, (&mut [f64], &mut [f64]))| {
                 if t % 2 == colour {
                     // a failed 2D cycle leaves px (a zero correction) untouched
-                    let _ = self.mg[d][t].solve(pb, px, &ctl);
+                    let _ = self.mg[d][t].solve_shared(&self.pools[d], pb, px, &ctl);
                 }
             };
             if par {

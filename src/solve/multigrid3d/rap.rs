@@ -40,7 +40,7 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
                     if (0..3).any(|d| g[d] < 0 || g[d] >= dims[d] as isize) {
                         continue;
                     }
-                    let row = &fine.a[g[0] as usize + nx * (g[1] as usize + ny * g[2] as usize)];
+                    let row = fine.row(g[0] as usize + nx * (g[1] as usize + ny * g[2] as usize));
                     for (m, v) in row.iter().enumerate() {
                         let om = off27(m);
                         t[t5([oc[0] + om[0], oc[1] + om[1], oc[2] + om[2]])] += w * v;

@@ -433,3 +433,60 @@ fn update_keeps_the_hierarchy_and_solves_the_new_operator() {
     mg.update(&a3).unwrap();
     assert_eq!(mg.info().unwrap().levels[0], [9, 8, 7]);
 }
+
+/// The fine level keeps only its 19-point rows: the 27-point rows it expands, and the
+/// transfers and Galerkin operator built from them (adjoint rows computed where needed), are
+/// bit for bit those of a level that stores the 27-point rows.
+#[test]
+fn fine_level_without_27_point_rows_builds_the_same_hierarchy() {
+    let a = aniso(9, 7, 11, 1, 0.3);
+    let dims = a.dims();
+    let mut fine = level::Level::fine(dims);
+    fine.embed(&a).unwrap();
+    assert!(fine.a.is_empty());
+    let mut full = level::Level::new(dims);
+    for (p, row) in full.a.iter_mut().enumerate() {
+        *row = fine.row(p);
+    }
+    let inside = |p: usize| {
+        a.inside(
+            p % dims[0],
+            (p / dims[0]) % dims[1],
+            p / (dims[0] * dims[1]),
+        )
+    };
+    for p in 0..fine.n() {
+        let ins = inside(p);
+        let mut nonzero = 0;
+        for (m, d) in crate::solve::stencil19::OFFSETS.iter().enumerate() {
+            let s = level::s27(d[0] as isize, d[1] as isize, d[2] as isize);
+            let want = if ins[m] { a.coefs()[p][m] } else { 0.0 };
+            assert_eq!(fine.row(p)[s], want);
+            assert_eq!(fine.coef(p, s), want);
+            nonzero += (want != 0.0) as usize;
+        }
+        let all = (0..27).filter(|&m| fine.coef(p, m) != 0.0).count();
+        assert_eq!(
+            all, nonzero,
+            "couplings outside the 19-point stencil at {p}"
+        );
+    }
+    for transpose in [false, true] {
+        let (mut f, mut g) = (level::Level::fine(dims), level::Level::new(dims));
+        f.embed(&a).unwrap();
+        g.a.clone_from(&full.a);
+        transfer::build_transfer(&mut f, transpose).unwrap();
+        transfer::build_transfer(&mut g, transpose).unwrap();
+        assert_eq!(f.p, g.p);
+        assert_eq!(f.r, g.r);
+        let nc = [dims[0] / 2, dims[1] / 2, dims[2] / 2];
+        let (mut cf, mut cg) = (level::Level::new(nc), level::Level::new(nc));
+        rap::galerkin(&f, &mut cf);
+        rap::galerkin(&g, &mut cg);
+        assert_eq!(cf.a, cg.a);
+        assert!(cf
+            .a
+            .iter()
+            .any(|r| r.iter().filter(|v| **v != 0.0).count() > 19));
+    }
+}

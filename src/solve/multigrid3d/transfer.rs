@@ -55,40 +55,32 @@ const COLLAPSE: [[usize; 27]; 8] = {
     t
 };
 
-/// The adjoint operator `A*_p[m] = A_{p+o_m}[26 − m]` of a level (zero outside the grid).
-fn adjoint(lev: &Level) -> Vec<[f64; 27]> {
+/// Row `f` of the adjoint operator `A*_f[m] = A_{f+o_m}[26 − m]` of a level (zero outside
+/// the grid), computed where needed: a stored adjoint would cost 216 bytes per unknown
+/// during the setup.
+fn adjoint_row(lev: &Level, f: [usize; 3]) -> [f64; 27] {
     let [nx, ny, nz] = lev.dims;
-    let mut at = vec![[0.0; 27]; lev.n()];
-    let plane = |(k, out): (usize, &mut [[f64; 27]])| {
-        for j in 0..ny {
-            for i in 0..nx {
-                let row = &mut out[i + nx * j];
-                for (m, o) in OFF.iter().enumerate() {
-                    let g = [i as isize + o[0], j as isize + o[1], k as isize + o[2]];
-                    let inside = g[0] >= 0
-                        && g[1] >= 0
-                        && g[2] >= 0
-                        && (g[0] as usize) < nx
-                        && (g[1] as usize) < ny
-                        && (g[2] as usize) < nz;
-                    row[m] = if inside {
-                        lev.a[g[0] as usize + nx * (g[1] as usize + ny * g[2] as usize)][26 - m]
-                    } else {
-                        0.0
-                    };
-                }
-            }
+    let mut row = [0.0; 27];
+    for (m, o) in OFF.iter().enumerate() {
+        let g = [
+            f[0] as isize + o[0],
+            f[1] as isize + o[1],
+            f[2] as isize + o[2],
+        ];
+        let inside = g[0] >= 0
+            && g[1] >= 0
+            && g[2] >= 0
+            && (g[0] as usize) < nx
+            && (g[1] as usize) < ny
+            && (g[2] as usize) < nz;
+        if inside {
+            row[m] = lev.coef(
+                g[0] as usize + nx * (g[1] as usize + ny * g[2] as usize),
+                26 - m,
+            );
         }
-    };
-    if nx * ny == 0 {
-        return at;
     }
-    if use_par(lev.n()) {
-        at.par_chunks_mut(nx * ny).enumerate().for_each(plane);
-    } else {
-        at.chunks_mut(nx * ny).enumerate().for_each(plane);
-    }
-    at
+    row
 }
 
 /// Edge weights `[(w₋, w₊) of m, (w₋, w₊) of ma]` of a point interpolated along `d`.
@@ -201,7 +193,6 @@ pub(super) fn build_transfer(lev: &mut Level, transpose: bool) -> Result<(), Sol
     p.resize(ncn, [0.0; 27]);
     r.resize(ncn, [0.0; 27]);
     let lv: &Level = lev;
-    let at = adjoint(lv);
     let plans: Vec<InnerPlan> = (0..27).map(|m| InnerPlan::new(OFF[m])).collect();
     let [nx, ny, _] = dims;
     let fp = |f: [usize; 3]| f[0] + nx * (f[1] + ny * f[2]);
@@ -232,8 +223,7 @@ pub(super) fn build_transfer(lev: &mut Level, transpose: bool) -> Result<(), Sol
                     let o = off27(m);
                     let d = (0..3).find(|&d| o[d] != 0).expect("edge slot");
                     let p = fp(f);
-                    let ma = &at[p];
-                    let w = edge_weights(&lv.a[p], ma, d);
+                    let w = edge_weights(&lv.row(p), &adjoint_row(lv, f), d);
                     // this coarse point is the minus side of f if f lies on its plus side
                     let pick = |x: (f64, f64)| if o[d] > 0 { x.0 } else { x.1 };
                     ps[m] = pick(w[0]);
@@ -250,11 +240,11 @@ pub(super) fn build_transfer(lev: &mut Level, transpose: bool) -> Result<(), Sol
                                 "multigrid: zero or non-finite diagonal at unknown {f:?}"
                             ))
                         };
-                        ps[m] = inner_weight(&lv.a[fp(f)], &plans[m], &ps).ok_or_else(err)?;
+                        ps[m] = inner_weight(&lv.row(fp(f)), &plans[m], &ps).ok_or_else(err)?;
                         rs[m] = if transpose {
                             ps[m]
                         } else {
-                            inner_weight(&at[fp(f)], &plans[m], &rs).ok_or_else(err)?
+                            inner_weight(&adjoint_row(lv, f), &plans[m], &rs).ok_or_else(err)?
                         };
                     }
                 }
