@@ -88,7 +88,14 @@ fn a_case_has_every_file_and_the_condition_of_every_family_kind() {
     let case = d.path().join("channel").join("channel.foam");
     let mesh = MeshOptions::with_span(0.25, "test").unwrap();
     let fmt = Plot3dFormat::default();
-    let written = write_outputs_with(&blocks, Some(&conn), &[case.clone()], &fmt, &mesh).unwrap();
+    let written = write_outputs_with(
+        &blocks,
+        Some(&conn),
+        std::slice::from_ref(&case),
+        &fmt,
+        &mesh,
+    )
+    .unwrap();
     let dir = d.path().join("channel");
     for f in CASE_FILES {
         assert!(
@@ -104,7 +111,7 @@ fn a_case_has_every_file_and_the_condition_of_every_family_kind() {
     );
     // The polyMesh is the one a polyMesh output writes, byte for byte.
     let pm = d.path().join("direct").join("polyMesh");
-    write_outputs_with(&blocks, Some(&conn), &[pm.clone()], &fmt, &mesh).unwrap();
+    write_outputs_with(&blocks, Some(&conn), std::slice::from_ref(&pm), &fmt, &mesh).unwrap();
     for f in ["points", "faces", "owner", "neighbour", "boundary"] {
         let a = std::fs::read(dir.join("constant/polyMesh").join(f)).unwrap();
         assert_eq!(a, std::fs::read(pm.join(f)).unwrap(), "{f}");
