@@ -16,8 +16,11 @@ SU2 mesh and a Gmsh MSH 4.1 file with `ellipgrid convert`, then
   - writes a CGNS file: cgnscheck must report no warning and no error, and h5py reads it
     independently: every 1to1 connection's point range, donor range and transform map each
     node onto a node of the donor zone with the same coordinates.
-Surface grids (not volumes, not planar) give only the Gmsh and CGNS files. Exit 1 on any
-failure.
+Surface grids (not volumes, not planar) give only the Gmsh and CGNS files.
+For the airfoil C-grid (rae2822_cgrid) it also writes the runnable OpenFOAM case
+(`convert grid.x DIR/rae.foam`) and runs it: checkMesh, potentialFoam, then simpleFoam for
+FOAM_ITERATIONS iterations; both solvers must end without error and the residuals must fall
+(the first and last initial residuals of Ux and p). Exit 1 on any failure.
 """
 import os
 import re
@@ -149,6 +152,59 @@ def check_cgns(exe, grid, extra, work, name):
     return problems, len(zones), n1to1
 
 
+# The example whose OpenFOAM case is run, and for how many simpleFoam iterations.
+FOAM_CASE_EXAMPLE = "rae2822_cgrid"
+FOAM_ITERATIONS = 30
+
+
+def foam(case, command):
+    """Runs an OpenFOAM command in a case; its exit code and log."""
+    r = subprocess.run(["bash", "-c", f"source {FOAM_BASHRC} >/dev/null 2>&1; {command} "
+                        f"-case '{case}'"], capture_output=True, text=True)
+    return r.returncode, r.stdout + r.stderr
+
+
+def residuals(log, field):
+    """The initial residual of `field`'s first solve in each iteration (p is solved once
+    per non-orthogonal corrector), in order."""
+    out = []
+    for step in log.split("\nTime = ")[1:]:
+        m = re.search(r"Solving for " + field + r", Initial residual = ([^,]+),", step)
+        if m:
+            out.append(float(m.group(1)))
+    return out
+
+
+def run_case(exe, grid, extra, work, name):
+    """Writes the runnable OpenFOAM case of a grid and runs potentialFoam and a few simpleFoam
+    iterations: both must end, and the residuals of Ux and p must fall."""
+    case = os.path.join(work, name + "_case")
+    subprocess.run([exe, "convert", "-q", grid, os.path.join(case, name + ".foam")] + extra,
+                   check=True)
+    control = os.path.join(case, "system", "controlDict")
+    text = re.sub(r"(?m)^endTime\s.*$", f"endTime         {FOAM_ITERATIONS};", open(control).read())
+    open(control, "w").write(text)
+    problems, _, _, _, _ = check_mesh(case, name)
+    out = []
+    for command in ("potentialFoam", "simpleFoam"):
+        code, log = foam(case, command)
+        if code != 0 or "\nEnd" not in log or "FOAM FATAL" in log or "nan" in log.lower():
+            problems.append(f"{command} failed (exit {code}):\n" + log[-2000:])
+            break
+        if command == "simpleFoam":
+            for field, fall in (("Ux", 20.0), ("p", 10.0)):
+                r = residuals(log, field)
+                if len(r) < FOAM_ITERATIONS or not r[-1] * fall < r[0]:
+                    problems.append(f"simpleFoam: {field} residuals do not fall {fall}x: "
+                                    f"{r[:1]} ... {r[-1:]} ({len(r)} solves)")
+                out.append(f"{field} {r[0]:.3g} -> {r[-1]:.3g}")
+    print(f"{name}: OpenFOAM case: potentialFoam and {FOAM_ITERATIONS} simpleFoam iterations: "
+          f"{'ok' if not problems else 'FAILED'}; initial residuals {', '.join(out)}")
+    for p in problems:
+        print("   ", p)
+    return bool(problems)
+
+
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     bad = 0
@@ -228,6 +284,8 @@ def main():
         for p in problems:
             print("   ", p)
         bad += bool(problems)
+        if name == FOAM_CASE_EXAMPLE:
+            bad += run_case(exe, grid, extra, work, name)
     sys.exit(1 if bad else 0)
 
 

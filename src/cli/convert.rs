@@ -21,8 +21,8 @@ pub struct ConvertArgs {
     input: PathBuf,
     /// The output, by extension: .x/.xyz/.p3d/.g/.grd (Plot3D), .vts, .vtm, .glb, .gltf, .obj,
     /// .png or .svg, .conn (connectivity), .su2 (SU2), .msh (Gmsh 4.1), .cgns (CGNS, with the
-    /// cgns feature), or a directory named polyMesh (OpenFOAM; planar grids extruded one unit
-    /// along z).
+    /// cgns feature), a directory named polyMesh (OpenFOAM; planar grids extruded one unit
+    /// along z), or DIR/NAME.foam (a runnable OpenFOAM case in DIR: mesh, system/, 0/).
     output: PathBuf,
     /// Plot3D encoding: unformatted (Fortran records), formatted (ASCII) or stream (C binary).
     /// Default: the input's (unformatted for case files).
@@ -60,7 +60,7 @@ pub struct ConvertArgs {
     #[arg(long, value_name = "METRIC")]
     color: Option<String>,
     /// The connectivity of a Plot3D or VTK input (a `.conn` file: interfaces, boundary
-    /// patches, families), for solver meshes (.su2, .msh, polyMesh). Default: the input's
+    /// patches, families), for solver meshes (.su2, .msh, polyMesh, .foam). Default: the input's
     /// name with `.conn` if that file exists; without one, every block side is its own patch.
     #[arg(long, value_name = "FILE")]
     conn: Option<PathBuf>,
@@ -199,11 +199,13 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
             "--color colours glTF output (.glb, .gltf); pictures: ellipgrid plot --color",
         ));
     }
-    if (a.span.is_some() || a.foam_format.is_some()) && kind != OutputKind::Foam {
+    if (a.span.is_some() || a.foam_format.is_some())
+        && !matches!(kind, OutputKind::Foam | OutputKind::FoamCase)
+    {
         return Err(Error::input(
             a.output.display().to_string(),
             "--span and --foam-format are options of OpenFOAM meshes (a directory named \
-             polyMesh)",
+             polyMesh, or a case DIR/NAME.foam)",
         ));
     }
     let mut mesh = match a.span {
@@ -254,6 +256,7 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
             vec![a.output.with_extension("bin"), a.output.clone()]
         }
         OutputKind::Foam
+        | OutputKind::FoamCase
         | OutputKind::Su2
         | OutputKind::Msh
         | OutputKind::Cgns

@@ -342,6 +342,7 @@ fn smooth(
                 let mesh = matches!(
                     kind,
                     job::OutputKind::Foam
+                        | job::OutputKind::FoamCase
                         | job::OutputKind::Su2
                         | job::OutputKind::Msh
                         | job::OutputKind::Cgns

@@ -12,6 +12,7 @@ use crate::{Error, Grid2, Grid3, Result};
 pub mod cgns;
 pub mod connectivity;
 pub mod foam;
+pub mod foam_case;
 pub mod gltf;
 pub mod gmsh;
 pub mod mesh;

@@ -132,6 +132,11 @@ pub fn write_mesh(
                 .map(|f| path.join(f))
                 .collect())
         }
+        OutputKind::FoamCase => {
+            let planar = blocks.iter().any(|(_, b)| matches!(b, Block::Planar(_)));
+            let mesh = Mesh::build(&place, blocks, conn, planar.then_some(options.span))?;
+            crate::io::foam_case::write_case(path, &mesh, options.foam_binary)
+        }
         OutputKind::Su2 => {
             crate::io::su2::write_su2(path, &Mesh::build(&place, blocks, conn, None)?)?;
             Ok(vec![path.to_path_buf()])

@@ -329,6 +329,8 @@ pub enum OutputKind {
     Connectivity,
     /// An OpenFOAM mesh: a directory named `polyMesh`.
     Foam,
+    /// A runnable OpenFOAM case (`DIR/NAME.foam`: mesh, `system/`, `0/` in `DIR`).
+    FoamCase,
     /// An SU2 native mesh (`.su2`).
     Su2,
     /// A Gmsh MSH 4.1 mesh (`.msh`).
@@ -352,6 +354,7 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
         "su2" => Ok(OutputKind::Su2),
         "msh" => Ok(OutputKind::Msh),
         "cgns" => Ok(OutputKind::Cgns),
+        "foam" => Ok(OutputKind::FoamCase),
         "vts" => Ok(OutputKind::Vts),
         "vtm" => Ok(OutputKind::Vtm),
         "glb" => Ok(OutputKind::Glb),
@@ -363,8 +366,8 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
             path.display().to_string(),
             "unknown output extension: use .x/.xyz/.p3d/.g (Plot3D), .vts or .vtm (VTK), \
              .glb/.gltf (glTF), .obj (OBJ), .png/.svg (picture), .conn (connectivity), \
-             .su2 (SU2), .msh (Gmsh), .cgns (CGNS), or a directory named polyMesh \
-             (OpenFOAM)",
+             .su2 (SU2), .msh (Gmsh), .cgns (CGNS), a directory named polyMesh \
+             (OpenFOAM mesh) or DIR/NAME.foam (OpenFOAM case)",
         )),
     }
 }
@@ -489,7 +492,11 @@ fn write_each(
                 crate::plot::write_picture(path, blocks, &crate::plot::PlotOptions::default())?;
                 written.push(path.clone());
             }
-            OutputKind::Foam | OutputKind::Su2 | OutputKind::Msh | OutputKind::Cgns => {
+            OutputKind::Foam
+            | OutputKind::FoamCase
+            | OutputKind::Su2
+            | OutputKind::Msh
+            | OutputKind::Cgns => {
                 let conn = match topology {
                     Some(c) => c.clone(),
                     None => crate::io::mesh::sides_as_patches(blocks),
