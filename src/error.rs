@@ -78,10 +78,15 @@ impl Error {
         }
     }
 
-    /// Process exit code: 2 for bad input, 3 for a folded grid, 4 for a solver failure, 5 for
-    /// a property that `verify` finds broken.
+    /// Process exit code: 2 for bad input (a direct solve too large for the memory counts as a
+    /// grid too large), 3 for a folded grid, 4 for a solver failure, 5 for a property that
+    /// `verify` finds broken.
     pub fn exit_code(&self) -> u8 {
         match self {
+            Error::Solve {
+                source: crate::solve::SolveError::OutOfMemory { .. },
+                ..
+            } => 2,
             Error::Input { .. }
             | Error::Io { .. }
             | Error::Format { .. }

@@ -233,3 +233,133 @@ fn endless_special_files_and_directories_are_refused_early() {
     let left: Vec<_> = fs::read_dir(d.path()).unwrap().collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// A volume case (`examples/volume_warped_cube.toml`) at `n`³ nodes with `linear`.
+fn cube(n: usize, linear: &str) -> String {
+    std::fs::read_to_string(root().join("examples/volume_warped_cube.toml"))
+        .unwrap()
+        .replace("= 25\n", &format!("= {n}\n"))
+        .replace("linear = \"bicgstab\"", &format!("linear = \"{linear}\""))
+}
+
+#[test]
+fn direct_solves_too_large_for_the_memory_are_refused_before_they_start() {
+    // An 81³ volume with the direct solver: faer's LU would need ~90 GB (it used to fail
+    // inside the factorization, reported as a singular matrix). Refused at once, exit 2.
+    rejects(
+        &cube(81, "direct"),
+        &[
+            "bad.toml",
+            "needs ~",
+            "for the LU of linear = \"direct\"",
+            "\"bicgstab\" for a volume block",
+            "available",
+        ],
+    );
+    // The same block with an iterative solver passes the check.
+    let d = tempfile::tempdir().unwrap();
+    let path = d.path().join("c.toml");
+    let ok = ellipgrid::case::LoadedCase::parse(&cube(81, "bicgstab"), &path);
+    assert!(ok.is_ok(), "{:?}", ok.err());
+
+    // smooth: a 301² planar block regridded with --linear direct needs ~0.37 GB for the LU.
+    let g = ellipgrid::Grid2::<2>::from_fn(301, 301, |i, j| [i as f64, j as f64 + 0.1 * i as f64]);
+    let fmt = ellipgrid::io::plot3d::Plot3dFormat {
+        two_d: true,
+        ..Default::default()
+    };
+    ellipgrid::io::plot3d::write_plot3d(
+        &d.path().join("g.x"),
+        &[ellipgrid::io::Block::from(g)],
+        &fmt,
+        None,
+    )
+    .unwrap();
+    let o = with_memory(
+        d.path(),
+        "0.1",
+        &["smooth", "g.x", "-o", "s.x", "--linear", "direct"],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("g.x") && t.contains("for the LU of linear = \"direct\""),
+        "{t}"
+    );
+    assert!(!d.path().join("s.x").exists());
+}
+
+#[cfg(unix)]
+#[test]
+fn a_direct_solve_that_runs_out_of_memory_says_so() {
+    // The estimate overridden (ELLIPGRID_MEMORY_GB=100) and the address space capped at
+    // 1.2 GB: a 37³ volume's LU (~1.8 GB) fails inside faer, which is reported as memory,
+    // not as a singular matrix, with exit 2 and nothing written.
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("c.toml"), cube(37, "direct")).unwrap();
+    let bin = env!("CARGO_BIN_EXE_ellipgrid");
+    let o = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 1200000 && exec '{bin}' run c.toml -o g.x -q"
+        ))
+        .current_dir(d.path())
+        .env("ELLIPGRID_MEMORY_GB", "100")
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("volume 'cube'")
+            && t.contains("the direct LU of 42875 unknowns ran out of memory")
+            && !t.contains("singular"),
+        "{t}"
+    );
+    assert!(!d.path().join("g.x").exists());
+}
+
+#[test]
+fn step_files_too_large_for_the_reader_are_refused_before_it_starts() {
+    // The STEP reader holds the whole file as a syntax tree (~17–27 bytes per byte of the
+    // file, 10 s per million entities): entity counts, list lengths and the memory it would
+    // need are checked on the text first.
+    let d = tempfile::tempdir().unwrap();
+    let head = "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n";
+    let tail = "ENDSEC;\nEND-ISO-10303-21;\n";
+    let many = format!("{head}{}{tail}", "#1=A();".repeat(5_000_001));
+    let long = format!(
+        "{head}#1=CARTESIAN_POINT('',({}0.));\n{tail}",
+        "0.,".repeat(1_000_000)
+    );
+    for (name, body, memory, needle) in [
+        (
+            "many.step",
+            many,
+            None,
+            "more than 5000000 entity instances",
+        ),
+        (
+            "long.step",
+            long.clone(),
+            None,
+            "line 6: a list of more than 1000000 items",
+        ),
+        (
+            "big.step",
+            long,
+            Some("0.05"),
+            "needs ~0.090 GB, the machine has 0.050 GB",
+        ),
+    ] {
+        fs::write(d.path().join(name), body).unwrap();
+        let args = ["step", "list", name];
+        let o = match memory {
+            Some(gb) => with_memory(d.path(), gb, &args),
+            None => ellipgrid(d.path(), &args),
+        };
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {t}");
+        assert!(t.contains(name) && t.contains(needle), "{name}: {t}");
+        assert!(!t.contains("panicked"), "{name}: {t}");
+    }
+}

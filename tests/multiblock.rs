@@ -560,3 +560,66 @@ fn topology_errors_exit_2_naming_the_block_and_the_edge() {
         assert!(!d.path().join("g.x").exists() && !d.path().join("g.conn").exists());
     }
 }
+
+/// The 2 × 2 rectangle on the tilted plane z = (x + y) / 2 as surface blocks on a named
+/// `[[surface]]` (Section 4 for sides that lie on the surface): each block is the tensor grid
+/// of its edges, lifted onto the plane.
+#[test]
+fn surface_blocks_in_a_topology_lie_on_their_surface_and_reproduce_the_tensor_grid() {
+    let (n, m) = ([9, 17], [7, 11]);
+    let planar_text = rectangle_2x2(n, m);
+    let mut t = String::from(
+        "[[surface]]\nname = \"tilt\"\ntype = \"plane\"\norigin = [0, 0, 0]\n\
+         du = [3, 0, 1.5]\ndv = [0, 2, 1]\n\n",
+    );
+    for line in planar_text.lines() {
+        if let Some(rest) = line.strip_prefix("at = [") {
+            let v: Vec<f64> = rest
+                .trim_end_matches(']')
+                .split(',')
+                .map(|s| s.trim().parse().unwrap())
+                .collect();
+            writeln!(
+                t,
+                "at = [{:?}, {:?}, {:?}]",
+                v[0],
+                v[1],
+                0.5 * (v[0] + v[1])
+            )
+            .unwrap();
+        } else if line.starts_with("[[block]]") {
+            writeln!(t, "{line}\nkind = \"surface\"\nsurface = \"tilt\"").unwrap();
+        } else {
+            writeln!(t, "{line}").unwrap();
+        }
+    }
+    let g = generate(&t);
+    let (xs, ys) = ([0.0, 1.2, 3.0], [0.0, 0.8, 2.0]);
+    let mut worst = 0.0f64;
+    for (k, (_, b)) in g.blocks.iter().enumerate() {
+        let (i0, j0) = (k % 2, k / 2);
+        let Block::Surface(grid) = b else {
+            panic!("a surface block")
+        };
+        for j in 0..grid.nj() {
+            for i in 0..grid.ni() {
+                let x = xs[i0] + (xs[i0 + 1] - xs[i0]) * i as f64 / (n[i0] - 1) as f64;
+                let y = ys[j0] + (ys[j0 + 1] - ys[j0]) * j as f64 / (m[j0] - 1) as f64;
+                let p = grid.point(i, j);
+                worst = worst
+                    .max((p[0] - x).abs())
+                    .max((p[1] - y).abs())
+                    .max((p[2] - 0.5 * (x + y)).abs());
+            }
+        }
+        assert!(g.report.blocks[k].surface_steps.is_some());
+    }
+    // exact to rounding (projection, harmonic solve and inversion on a domain of size 3)
+    assert!(worst < 1e-11, "largest deviation {worst:e}");
+    assert_eq!(g.report.interfaces.len(), 4);
+    // Without a surface the block is refused, naming it.
+    rejects(
+        &t.replacen("surface = \"tilt\"\n", "", 1),
+        &["block 'b00'", "needs surface"],
+    );
+}

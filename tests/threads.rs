@@ -107,3 +107,97 @@ fn case_grids_are_bit_identical_on_1_and_2_threads() {
         );
     }
 }
+
+/// `ellipgrid run` of `case` (written into `dir`) with `RAYON_NUM_THREADS=threads`: the
+/// bytes of the Plot3D file written.
+fn run_with_threads(dir: &Path, case: &str, threads: &str) -> Vec<u8> {
+    std::fs::write(dir.join("c.toml"), case).unwrap();
+    let out = dir.join(format!("g{threads}.x"));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_ellipgrid"))
+        .args(["run", "c.toml", "-q", "-o"])
+        .arg(&out)
+        .current_dir(dir)
+        .env("RAYON_NUM_THREADS", threads)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    std::fs::read(out).unwrap()
+}
+
+/// The thread matrix through the command line (issue #17): a planar case, a surface case
+/// and a volume case, each with every linear solver that applies to it (2D: multigrid and
+/// direct; volume: Bi-CGSTAB, multigrid and direct), run with 1 and with 2 threads: the
+/// written files are identical byte for byte. Sizes: at least 2¹⁵ unknowns per solve, so
+/// that the iterative solvers take their parallel paths with 2 threads (faer's LU splits its
+/// work the same way at any size).
+#[test]
+fn cli_outputs_are_bit_identical_on_1_and_2_threads_for_every_solver() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let data = root.join("data").display().to_string();
+    let example = |f: &str| {
+        std::fs::read_to_string(root.join("examples").join(f))
+            .unwrap()
+            .replace("../data", &data)
+    };
+    let sized = |text: String, from: &[&str], to: &[&str]| {
+        from.iter().zip(to).fold(text, |t, (a, b)| {
+            assert!(t.contains(a), "'{a}' not in the example");
+            t.replacen(a, b, 1)
+        })
+    };
+    // planar: 185² nodes (33 489 unknowns); surface: 261 × 129 nodes (32 893 unknowns in the
+    // Laplace–Beltrami solves); volume: 35³ nodes (35 937 unknowns), 23³ for the direct LU
+    let planar = sized(
+        example("curved.toml"),
+        &["ni = 65", "nj = 49", "[solver]\n"],
+        &["ni = 185", "nj = 185", "[solver]\nlinear = \"LINEAR\"\n"],
+    );
+    let surface = format!(
+        "[solver]\nlinear = \"LINEAR\"\n{}",
+        sized(
+            example("wing_pylon.toml"),
+            &["ni = 129", "nj = 65"],
+            &["ni = 261", "nj = 129"]
+        )
+    );
+    let volume = |n: usize| {
+        let to = [
+            format!("ni = {n}"),
+            format!("nj = {n}"),
+            format!("nk = {n}"),
+            "linear = \"LINEAR\"".to_string(),
+        ];
+        let to: Vec<&str> = to.iter().map(String::as_str).collect();
+        sized(
+            example("volume_warped_cube.toml"),
+            &["ni = 25", "nj = 25", "nk = 25", "linear = \"bicgstab\""],
+            &to,
+        )
+    };
+    let cases = [
+        ("planar", "multigrid", planar.clone()),
+        ("planar", "direct", planar),
+        ("surface", "multigrid", surface.clone()),
+        ("surface", "direct", surface),
+        ("volume", "bicgstab", volume(35)),
+        ("volume", "multigrid", volume(35)),
+        ("volume", "direct", volume(23)),
+    ];
+    let d = tempfile::tempdir().unwrap();
+    for (kind, linear, case) in cases {
+        let case = case.replace("LINEAR", linear);
+        let one = run_with_threads(d.path(), &case, "1");
+        let two = run_with_threads(d.path(), &case, "2");
+        assert!(!one.is_empty());
+        let differ = one.iter().zip(&two).filter(|(a, b)| a != b).count();
+        assert!(
+            one.len() == two.len() && differ == 0,
+            "{kind} with {linear}: {differ} bytes differ between 1 and 2 threads"
+        );
+    }
+}

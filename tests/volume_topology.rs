@@ -522,3 +522,52 @@ fn orthogonality_at_an_interior_face_removes_the_kink_across_it() {
         }
     }
 }
+
+#[test]
+fn the_lid_example_runs_fold_free_with_a_smooth_interface_and_a_matching_connectivity_file() {
+    let d = tempfile::tempdir().unwrap();
+    let case = root().join("examples/volume_topology_lid.toml");
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "-o",
+            "lid.x",
+            "-o",
+            "lid.conn",
+            "--report",
+            "r.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let c = check_connectivity3(&d.path().join("lid.x"), &d.path().join("lid.conn"));
+    assert_eq!((c.interfaces.len(), c.patches.len()), (1, 10));
+    assert!(c.families.iter().any(|(_, f)| f == "lid"));
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
+    for v in r["volumes"].as_array().unwrap() {
+        assert_eq!(v["quality"]["folded_cells"], 0);
+        assert_eq!(v["picard"]["converged"], true);
+    }
+    // Both volumes orthogonal at the shared face: the lines cross it nearly straight.
+    let f = &r["face_interfaces"][0];
+    assert_eq!(f["face"], "middle");
+    assert!(f["kink_max_deg"].as_f64().unwrap() < 1.0, "{f}");
+    // The lid: a surface face on Scherk's surface, the wall spacing held within 2 %.
+    let w = &r["volumes"][1]["wall"];
+    assert!(w["ratio_min"].as_f64().unwrap() > 0.98 && w["ratio_max"].as_f64().unwrap() < 1.02);
+    assert!(w["angle_max_deg"].as_f64().unwrap() < 5.0, "{w}");
+    let lid = volume(&read_plot3d(&d.path().join("lid.x")).unwrap().blocks[1]).clone();
+    let [ni, nj, nk] = lid.dims();
+    for j in 0..nj {
+        for i in 0..ni {
+            let p = lid.point(i, j, nk - 1);
+            let z = (p[1].cos() / p[0].cos()).ln();
+            assert!(
+                (p[2] - z).abs() < 1e-9,
+                "lid node ({i}, {j}) off Scherk's surface"
+            );
+        }
+    }
+}

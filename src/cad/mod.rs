@@ -186,9 +186,16 @@ fn quietly<T>(f: impl FnOnce() -> T) -> std::thread::Result<T> {
 /// [`Error::Io`] if the file cannot be read; [`Error::Format`] if it is not STEP, has no
 /// shell, or truck-stepio fails on it (its panics are caught and reported here).
 pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
-    let text = crate::io::read_input_string(path)?;
-    prescan::check(&text).map_err(|m| Error::format(path, m))?;
-    let text = edge::prefer_3d_curves(&text);
+    step_faces_from_text(&crate::io::read_input_string(path)?, path)
+}
+
+/// [`read_step_faces`] of the text of a STEP file; `path` names it in messages.
+///
+/// # Errors
+/// As [`read_step_faces`].
+pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
+    prescan::check(text).map_err(|m| Error::format(path, m))?;
+    let text = edge::prefer_3d_curves(text);
     let shells = quietly(|| parse_shells(&text))
         .map_err(|p| {
             let msg = p

@@ -1,7 +1,11 @@
 //! Limits checked on a STEP file's text before the STEP reader sees it (issue #17): the
 //! reader expands knot vectors from their multiplicities and parses nested lists
 //! recursively, so a 15 KB file with a multiplicity of 2³¹ − 1 asks for gigabytes, and
-//! 10 000 nested parentheses overflow the stack. Both are refused here with the entity named.
+//! 10 000 nested parentheses overflow the stack; and it holds the whole file as a syntax tree
+//! (measured: ~17 bytes per byte of a file of tiny entities, ~27 per byte of one long list,
+//! 10 s per million entities). Refused here, with the entity or line named: nesting, knot
+//! multiplicities, the number of entity instances, the length of one list, and the memory
+//! the reader would need against the memory available.
 
 /// Deepest parenthesis nesting accepted (real files stay below 10).
 pub const MAX_DEPTH: usize = 64;
@@ -10,12 +14,33 @@ pub const MAX_DEPTH: usize = 64;
 /// stay below 30).
 pub const MAX_MULTIPLICITY: i64 = 64;
 
-/// Checks nesting depth and every knot multiplicity of B-spline curves and surfaces.
+/// Longest chain of entity references accepted (real files stay below 30): the reader
+/// resolves a reference by recursion, so a cycle (`#26 = SURFACE_CURVE('', #26, …)`, found
+/// by fuzzing) overflowed the stack, and so would a chain of some thousand entities.
+pub const MAX_REF_DEPTH: usize = 256;
+
+/// Most entity instances accepted (the 40 files of the #14 corpus have at most a few
+/// 10⁵; the reader takes ~10 s per million).
+pub const MAX_ENTITIES: usize = 5_000_000;
+
+/// Most items in one list (a B-spline's control-point rows and knot vectors stay far below).
+pub const MAX_LIST_ITEMS: usize = 1_000_000;
+
+/// Memory the STEP reader needs per byte of the file, rounded up from the measured 17–27
+/// (a million tiny `CARTESIAN_POINT`s: 40 MB file, 696 MB peak; one list of 3 million
+/// numbers: 9 MB file, 248 MB peak).
+pub const READER_BYTES_PER_BYTE: u64 = 30;
+
+/// Checks the memory the reader needs, nesting depth, the number of entities, the length of
+/// every list, that entity references form no cycle and no chain deeper than
+/// [`MAX_REF_DEPTH`], and every knot multiplicity of B-spline curves and surfaces.
 ///
 /// # Errors
 /// A message naming the entity (`#id`) or the line.
 pub fn check(text: &str) -> Result<(), String> {
-    check_depth(text)?;
+    check_memory(text.len())?;
+    check_structure(text)?;
+    check_references(text)?;
     for kind in ["B_SPLINE_SURFACE_WITH_KNOTS", "B_SPLINE_CURVE_WITH_KNOTS"] {
         let mut from = 0;
         while let Some(k) = text[from..].find(kind) {
@@ -45,23 +70,167 @@ pub fn check(text: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// Parenthesis depth outside strings at most [`MAX_DEPTH`].
-fn check_depth(text: &str) -> Result<(), String> {
+/// The reader's memory for a file of `len` bytes against the memory available.
+fn check_memory(len: usize) -> Result<(), String> {
+    let Some(avail) = crate::io::available_memory() else {
+        return Ok(());
+    };
+    let need = (len as u64).saturating_mul(READER_BYTES_PER_BYTE);
+    if need > avail {
+        return Err(format!(
+            "reading this {len}-byte STEP file needs ~{:.3} GB, the machine has {:.3} GB \
+             available (set {} to override)",
+            need as f64 / 1e9,
+            avail as f64 / 1e9,
+            crate::io::MEMORY_VAR
+        ));
+    }
+    Ok(())
+}
+
+/// Outside strings: parenthesis depth at most [`MAX_DEPTH`], at most [`MAX_ENTITIES`]
+/// statements (entity instances end with `;` outside parentheses) and at most
+/// [`MAX_LIST_ITEMS`] items in any one list.
+fn check_structure(text: &str) -> Result<(), String> {
     let (mut depth, mut line, mut in_str) = (0usize, 1usize, false);
+    let mut statements = 0usize;
+    // items so far of the list open at each depth
+    let mut items = [0usize; MAX_DEPTH + 1];
     for c in text.chars() {
         match c {
             '\'' => in_str = !in_str,
             '\n' => line += 1,
-            '(' if !in_str => {
+            _ if in_str => {}
+            '(' => {
                 depth += 1;
                 if depth > MAX_DEPTH {
                     return Err(format!(
                         "line {line}: parentheses nested deeper than {MAX_DEPTH}"
                     ));
                 }
+                items[depth] = 1;
             }
-            ')' if !in_str => depth = depth.saturating_sub(1),
+            ')' => depth = depth.saturating_sub(1),
+            ',' if depth > 0 => {
+                items[depth] += 1;
+                if items[depth] > MAX_LIST_ITEMS {
+                    return Err(format!(
+                        "line {line}: a list of more than {MAX_LIST_ITEMS} items"
+                    ));
+                }
+            }
+            ';' if depth == 0 => {
+                statements += 1;
+                if statements > MAX_ENTITIES {
+                    return Err(format!(
+                        "line {line}: more than {MAX_ENTITIES} entity instances"
+                    ));
+                }
+            }
             _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// The entity instances (`#id = …;`) and the references (`#n`) in each, outside strings,
+/// as ids and a flat list of references per instance.
+fn instances(text: &str) -> (Vec<u64>, Vec<usize>, Vec<u64>) {
+    let b = text.as_bytes();
+    let (mut ids, mut starts, mut refs) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut i, mut depth, mut in_str, mut inside) = (0usize, 0usize, false, false);
+    while i < b.len() {
+        let c = b[i];
+        i += 1;
+        if in_str {
+            in_str = c != b'\'';
+            continue;
+        }
+        match c {
+            b'\'' => in_str = true,
+            b'(' => depth += 1,
+            b')' => depth = depth.saturating_sub(1),
+            b';' if depth == 0 => inside = false,
+            b'#' => {
+                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
+                let Ok(n) = text[i..end].parse::<u64>() else {
+                    continue;
+                };
+                i = end;
+                if inside {
+                    refs.push(n);
+                } else if depth == 0 && text[end..].trim_start().starts_with('=') {
+                    ids.push(n);
+                    starts.push(refs.len());
+                    inside = true;
+                }
+            }
+            _ => {}
+        }
+    }
+    starts.push(refs.len());
+    (ids, starts, refs)
+}
+
+/// No cycle of references and no chain longer than [`MAX_REF_DEPTH`] (an iterative
+/// depth-first search: the check itself must not recurse).
+fn check_references(text: &str) -> Result<(), String> {
+    let (ids, starts, refs) = instances(text);
+    let index: std::collections::HashMap<u64, usize> =
+        ids.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    let succ = |v: usize| {
+        refs[starts[v]..starts[v + 1]]
+            .iter()
+            .filter_map(|r| index.get(r).copied())
+    };
+    // 0: not seen, 1: on the path, 2: done; depth of the longest chain from each instance
+    let mut state = vec![0u8; ids.len()];
+    let mut depth = vec![0usize; ids.len()];
+    for root in 0..ids.len() {
+        if state[root] != 0 {
+            continue;
+        }
+        let mut path: Vec<(usize, usize)> = vec![(root, 0)];
+        state[root] = 1;
+        while let Some(&mut (v, ref mut next)) = path.last_mut() {
+            if let Some(w) = succ(v).nth(*next) {
+                *next += 1;
+                match state[w] {
+                    1 => {
+                        let from = path.iter().position(|&(u, _)| u == w).unwrap_or(0);
+                        let cycle: Vec<String> = path[from..]
+                            .iter()
+                            .map(|&(u, _)| format!("#{}", ids[u]))
+                            .chain([format!("#{}", ids[w])])
+                            .collect();
+                        return Err(format!(
+                            "entity references form a cycle: {}",
+                            cycle.join(" → ")
+                        ));
+                    }
+                    0 => {
+                        state[w] = 1;
+                        path.push((w, 0));
+                        if path.len() > MAX_REF_DEPTH {
+                            return Err(format!(
+                                "#{}: entity references nested deeper than {MAX_REF_DEPTH}",
+                                ids[root]
+                            ));
+                        }
+                    }
+                    _ => {}
+                }
+            } else {
+                depth[v] = 1 + succ(v).map(|w| depth[w]).max().unwrap_or(0);
+                if depth[v] > MAX_REF_DEPTH {
+                    return Err(format!(
+                        "#{}: entity references nested deeper than {MAX_REF_DEPTH}",
+                        ids[v]
+                    ));
+                }
+                state[v] = 2;
+                path.pop();
+            }
         }
     }
     Ok(())
@@ -156,5 +325,29 @@ mod tests {
         assert!(check(&deep).unwrap_err().contains("line 1"));
         // strings may hold anything
         assert!(check("#1 = PRODUCT('((((((((', '');").is_ok());
+    }
+
+    #[test]
+    fn reference_cycles_and_deep_chains_are_named() {
+        let ok = "#1 = A(#2, #3);\n#2 = B(#3, '#1');\n#3 = C((#4));\n#4 = D();\n";
+        assert!(check(ok).is_ok());
+        let e = check(&ok.replace("#4 = D()", "#4 = D(#2)")).unwrap_err();
+        assert!(e.contains("cycle: #2 → #3 → #4 → #2"), "{e}");
+        let e = check("#7 = SURFACE_CURVE('', #7, (#8), .CURVE_3D.);").unwrap_err();
+        assert!(e.contains("cycle: #7 → #7"), "{e}");
+        let chain = |n: usize| -> String {
+            (1..=n)
+                .map(|k| format!("#{k} = A(#{});\n", k + 1))
+                .collect()
+        };
+        assert!(check(&chain(MAX_REF_DEPTH - 1)).is_ok());
+        let e = check(&chain(MAX_REF_DEPTH + 5)).unwrap_err();
+        assert!(e.contains("nested deeper than 256"), "{e}");
+        // the same chain listed backwards is found from its far end first
+        let back: String = (1..=MAX_REF_DEPTH + 5)
+            .rev()
+            .map(|k| format!("#{k} = A(#{});\n", k + 1))
+            .collect();
+        assert!(check(&back).unwrap_err().contains("nested deeper"));
     }
 }

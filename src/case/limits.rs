@@ -7,6 +7,7 @@
 //! `/proc/meminfo`, or the environment variable `ELLIPGRID_MEMORY_GB` when set (to allow
 //! more, or less, than the machine reports); without either only the absolute cap applies.
 
+use crate::solve::direct::lu_bytes;
 use crate::{Error, Result};
 
 /// At most this many nodes in one job (all blocks together): 2³¹.
@@ -34,6 +35,8 @@ pub struct Budget {
     pub blocks: u64,
     /// Peak bytes of the largest block's generation.
     pub largest: u64,
+    /// Of `largest`, the bytes of a direct solver's LU (0 without one).
+    pub largest_lu: u64,
 }
 
 impl Budget {
@@ -43,6 +46,21 @@ impl Budget {
     /// [`Error::Input`] at `place` if a dimension is zero-sized in a product that overflows,
     /// or the job passes [`MAX_NODES`].
     pub fn add(&mut self, place: &str, dims: &[usize], bytes_per_node: u64) -> Result<()> {
+        self.add_solved(place, dims, bytes_per_node, "")
+    }
+
+    /// [`Budget::add`] for a block solved by the linear solver called `linear`: "direct"
+    /// adds the LU's memory ([`lu_bytes`] of every node of the block) to the block's peak.
+    ///
+    /// # Errors
+    /// As [`Budget::add`].
+    pub fn add_solved(
+        &mut self,
+        place: &str,
+        dims: &[usize],
+        bytes_per_node: u64,
+        linear: &str,
+    ) -> Result<()> {
         let shown: Vec<String> = dims.iter().map(usize::to_string).collect();
         let too_many = || {
             Error::input(
@@ -64,7 +82,15 @@ impl Budget {
             .filter(|&t| t <= MAX_NODES)
             .ok_or_else(too_many)?;
         self.blocks += 1;
-        self.largest = self.largest.max(n.saturating_mul(bytes_per_node));
+        let lu = if linear == "direct" {
+            lu_bytes(n as usize, dims.len().clamp(2, 3))
+        } else {
+            0
+        };
+        let peak = n.saturating_mul(bytes_per_node).saturating_add(lu);
+        if peak > self.largest {
+            (self.largest, self.largest_lu) = (peak, lu);
+        }
         Ok(())
     }
 
@@ -86,11 +112,20 @@ impl Budget {
         };
         let bytes = self.bytes();
         if bytes > avail {
+            let lu = if self.largest_lu > 0 {
+                format!(
+                    ", of which ~{:.3} GB for the LU of linear = \"direct\" (use linear = \
+                     \"multigrid\", or \"bicgstab\" for a volume block)",
+                    gb(self.largest_lu)
+                )
+            } else {
+                String::new()
+            };
             return Err(Error::input(
                 place,
                 format!(
-                    "this grid ({} nodes) needs ~{:.3} GB, the machine has {:.3} GB available \
-                     (set {MEMORY_VAR} to override)",
+                    "this grid ({} nodes) needs ~{:.3} GB{lu}, the machine has {:.3} GB \
+                     available (set {MEMORY_VAR} to override)",
                     self.nodes,
                     gb(bytes),
                     gb(avail)

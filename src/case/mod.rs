@@ -103,16 +103,18 @@ impl LoadedCase {
         let topology = topology::build(&case, &place)?;
         let topology3 = topology3::build3(&case, &place)?;
         if let Some(t) = &topology3 {
-            for v in &t.volumes {
+            for (v, spec) in t.volumes.iter().zip(&case.volumes) {
                 let at = format!("{place}: volume '{}'", v.name);
-                budget.add(&at, &v.dims, limits::BYTES_PER_NODE_3D)?;
+                budget.add_solved(&at, &v.dims, limits::BYTES_PER_NODE_3D, &spec.linear)?;
             }
         }
         match &topology {
             Some(t) => {
                 for (b, blk) in t.blocks.iter().enumerate() {
                     let at = format!("{place}: block '{}'", blk.name);
-                    budget.add(&at, &t.dims(b), limits::BYTES_PER_NODE_2D)?;
+                    let dims = t.dims(b);
+                    let linear = &case.solver.linear;
+                    budget.add_solved(&at, &dims, limits::BYTES_PER_NODE_2D, linear)?;
                 }
             }
             None => {
@@ -120,7 +122,8 @@ impl LoadedCase {
                     if let (Some(ni), Some(nj)) = (b.ni, b.nj) {
                         let name = b.name.clone().unwrap_or_else(|| format!("block{}", k + 1));
                         let at = format!("{place}: block '{name}'");
-                        budget.add(&at, &[ni, nj], limits::BYTES_PER_NODE_2D)?;
+                        let linear = &case.solver.linear;
+                        budget.add_solved(&at, &[ni, nj], limits::BYTES_PER_NODE_2D, linear)?;
                     }
                 }
             }
@@ -132,7 +135,7 @@ impl LoadedCase {
             let name = v.name.clone().unwrap_or_else(|| format!("volume{}", k + 1));
             let at = format!("{place}: volume '{name}'");
             if let (Some(ni), Some(nj), Some(nk)) = (v.ni, v.nj, v.nk) {
-                budget.add(&at, &[ni, nj, nk], limits::BYTES_PER_NODE_3D)?;
+                budget.add_solved(&at, &[ni, nj, nk], limits::BYTES_PER_NODE_3D, &v.linear)?;
             }
         }
         budget.check_memory(&place)?;
@@ -431,7 +434,7 @@ impl LoadedCase {
                 origin,
             } => {
                 let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
-                let text = crate::io::read_input_string(&path)?;
+                let text = within(at, crate::io::read_input_string(&path))?;
                 let pts = geo::read_airfoil_dat(&text).map_err(|source| Error::Geometry {
                     place: format!("{at}: {}", path.display()),
                     source,
@@ -465,6 +468,16 @@ fn origin_of(o: &Option<Vec<f64>>, at: &str) -> Result<Vec3> {
         .map(|v| point(v, at, "origin"))
         .transpose()
         .map(|p| p.unwrap_or_else(Vec3::zeros))
+}
+
+/// The error of reading a file that the case refers to, prefixed with the place in the case
+/// that names it ("case.toml: block 'w', edge E3: naca.dat: No such file"), so that every
+/// message names the case file too.
+pub(crate) fn within<T>(at: &str, r: Result<T>) -> Result<T> {
+    r.map_err(|e| match e {
+        Error::Folded { .. } | Error::Solve { .. } => e,
+        _ => Error::input(at, e.to_string()),
+    })
 }
 
 /// A point from `[x, y]` or `[x, y, z]`, finite.

@@ -114,8 +114,10 @@ pub struct BlockSpec {
     pub e3: Option<SideSpec>,
     #[serde(rename = "E4")]
     pub e4: Option<SideSpec>,
-    /// The surface of a `kind = "surface"` block (its edges are the surface's own edges).
-    pub surface: Option<SurfaceSpec>,
+    /// The surface of a `kind = "surface"` block: a table (its edges are the surface's own
+    /// edges) or, in a case with `[[edge]]` tables, the name of a `[[surface]]` (the edges lie
+    /// on it).
+    pub surface: Option<SurfaceRef>,
     /// A reference surface: the report gives the distance of the grid's nodes from it (for
     /// example Scherk's surface for a minimal-surface block spanned by edges on it).
     pub reference: Option<SurfaceSpec>,
@@ -262,6 +264,36 @@ pub enum FaceKind {
     Minimal,
     /// Section 4 on a named surface.
     Surface,
+}
+
+/// A block's surface: given inline, or the name of a `[[surface]]`.
+#[derive(Clone, Debug)]
+pub enum SurfaceRef {
+    Inline(SurfaceSpec),
+    Named(String),
+}
+
+impl<'de> Deserialize<'de> for SurfaceRef {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        use serde::de::value::MapAccessDeserializer;
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = SurfaceRef;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a surface table or the name of a [[surface]]")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<SurfaceRef, E> {
+                Ok(SurfaceRef::Named(v.to_string()))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> std::result::Result<SurfaceRef, A::Error> {
+                SurfaceSpec::deserialize(MapAccessDeserializer::new(map)).map(SurfaceRef::Inline)
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 /// `[[surface]]`: a named surface, `name` beside the keys of a [`SurfaceSpec`]

@@ -1,7 +1,7 @@
 //! Surface blocks of a case file (`kind = "surface"`, Section 4): the surface, and the (u, v)
 //! of the boundary nodes distributed by 3D arclength along the surface's own edges.
 
-use crate::case::spec::SurfaceSpec;
+use crate::case::spec::{SurfaceRef, SurfaceSpec};
 use crate::case::{point, LoadedCase};
 use crate::grid::Edge;
 use crate::io::{plot3d, Block};
@@ -14,13 +14,14 @@ impl LoadedCase {
     /// The surface of block k, boxed.
     pub fn surface(&self, k: usize) -> Result<Box<dyn Surface>> {
         let place = self.block_place(k);
-        let Some(spec) = &self.case.blocks[k].surface else {
-            return Err(Error::input(
+        match &self.case.blocks[k].surface {
+            Some(SurfaceRef::Inline(spec)) => self.build_surface(spec, &place),
+            Some(SurfaceRef::Named(name)) => Ok(Box::new(self.named_surface(name, &place)?)),
+            None => Err(Error::input(
                 place,
-                "a surface block needs surface = { type = ... }",
-            ));
-        };
-        self.build_surface(spec, &place)
+                "a surface block needs surface = { type = ... } (or the name of a [[surface]])",
+            )),
+        }
     }
 
     /// The `reference` surface of block k, if any: the report gives the distance of the
@@ -54,7 +55,10 @@ impl LoadedCase {
                 points: None,
             } => {
                 let path = self.path.parent().unwrap_or(Path::new(".")).join(file);
-                Box::new(read_net(&path, block.unwrap_or(1))?)
+                Box::new(crate::case::within(
+                    &place,
+                    read_net(&path, block.unwrap_or(1)),
+                )?)
             }
             SurfaceSpec::HermiteNet {
                 file: None,

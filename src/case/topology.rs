@@ -29,11 +29,11 @@ pub(super) fn build(case: &Case, place: &str) -> Result<Option<Topology>> {
     for (k, b) in case.blocks.iter().enumerate() {
         let name = b.name.clone().unwrap_or_else(|| format!("block{}", k + 1));
         let at = format!("{place}: block '{name}'");
-        if b.kind == BlockKind::Surface {
+        if b.kind == BlockKind::Surface && b.surface.is_none() {
             return Err(Error::input(
                 at,
-                "surface blocks take their edges from the surface; in a case with [[edge]] \
-                 tables, blocks are planar or minimal",
+                "a surface block needs surface = \"name\" of a [[surface]] (or a surface \
+                 table); its edges lie on that surface",
             ));
         }
         let sides = side_names(b.sides(), &at)?;

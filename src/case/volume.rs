@@ -89,7 +89,7 @@ pub fn volume_faces(case: &LoadedCase, k: usize, params: &PicardParams) -> Resul
             .parent()
             .unwrap_or(std::path::Path::new("."))
             .join(&ff.file);
-        let file = crate::io::plot3d::read_plot3d(&path)?;
+        let file = crate::case::within(&place, crate::io::plot3d::read_plot3d(&path))?;
         let at = format!("{place}: {}", path.display());
         if file.blocks.len() != 6 {
             return Err(Error::input(

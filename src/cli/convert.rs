@@ -258,12 +258,19 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
         | OutputKind::Msh
         | OutputKind::Cgns
         | OutputKind::Connectivity => {
-            let conn = connectivity(a, &input)?;
+            let (conn, from) = connectivity(a, &input)?;
             if kind == OutputKind::Connectivity {
                 ellipgrid::io::connectivity::write_file(&a.output, &conn)?;
                 vec![a.output.clone()]
             } else {
-                ellipgrid::io::staged(|| job::write_mesh(&a.output, kind, blocks, &conn, &mesh))?
+                ellipgrid::io::staged(|| job::write_mesh(&a.output, kind, blocks, &conn, &mesh))
+                    .map_err(|e| match (e, &from) {
+                        // a range or family that does not fit the blocks: name the .conn
+                        (Error::Input { place, msg }, Some(p)) => {
+                            Error::input(format!("{place} (connectivity {})", p.display()), msg)
+                        }
+                        (e, _) => e,
+                    })?
             }
         }
         _ => {
@@ -280,8 +287,8 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
 }
 
 /// The connectivity of the input: a case's topology, `--conn`, the `.conn` beside the input,
-/// or every block side a patch of its own.
-fn connectivity(a: &ConvertArgs, input: &Loaded) -> Result<ConnFile> {
+/// or every block side a patch of its own; with the file it was read from, if any.
+fn connectivity(a: &ConvertArgs, input: &Loaded) -> Result<(ConnFile, Option<PathBuf>)> {
     if input.case && input.conn.is_some() && a.conn.is_some() {
         return Err(Error::input(
             "--conn",
@@ -289,7 +296,7 @@ fn connectivity(a: &ConvertArgs, input: &Loaded) -> Result<ConnFile> {
         ));
     }
     if let (Some(c), None) = (&input.conn, &a.conn) {
-        return Ok(c.clone());
+        return Ok((c.clone(), None));
     }
     let beside = a.input.with_extension("conn");
     let path = match &a.conn {
@@ -302,9 +309,9 @@ fn connectivity(a: &ConvertArgs, input: &Loaded) -> Result<ConnFile> {
             if !a.quiet {
                 println!("connectivity from {}", p.display());
             }
-            Ok(c)
+            Ok((c, Some(p)))
         }
-        None => Ok(ellipgrid::io::mesh::sides_as_patches(&input.blocks)),
+        None => Ok((ellipgrid::io::mesh::sides_as_patches(&input.blocks), None)),
     }
 }
 

@@ -156,10 +156,11 @@ fn grid(a: &GridArgs) -> Result<()> {
     let mut budget = ellipgrid::case::limits::Budget::default();
     for f in &chosen {
         let at = format!("{name}: face {} (--ni, --nj)", f.index);
-        budget.add(
+        budget.add_solved(
             &at,
             &[a.ni, a.nj],
             ellipgrid::case::limits::BYTES_PER_NODE_2D,
+            &a.linear,
         )?;
     }
     budget.check_memory(&format!("{name} (--ni, --nj)"))?;

@@ -77,7 +77,8 @@ impl Unknowns {
     #[inline]
     fn pos(&self, i: usize, j: usize) -> Option<usize> {
         let (ii, jj) = (i.wrapping_sub(self.i0), j.wrapping_sub(self.j0));
-        (ii < self.nx && jj < self.ny).then_some(ii + self.nx * jj)
+        // `then`, not `then_some`: the position of a wrapped (outside) index is not computed
+        (ii < self.nx && jj < self.ny).then(|| ii + self.nx * jj)
     }
 }
 

@@ -16,12 +16,13 @@
 
 use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
 use crate::algebraic::control3d::Control3;
+use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::wall::{
     remap_volume, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES, TOLERANCE,
 };
-use crate::elliptic::wall_normal::{shift_tangential, TangentGoals};
+use crate::elliptic::wall_normal::{shift_tangential, TangentGoals, LAYER_CUTOFF};
 use crate::elliptic::{nested3d, poisson3d};
 use crate::grid::faces::{Faces, FACE_NAMES};
 use crate::solve::stencil19::Stencil19;
@@ -44,7 +45,8 @@ impl FaceCorrections {
 }
 
 /// Grids a volume block with the corrections `c` (module docs), from `start` (boundary nodes
-/// replaced by the faces') or, without one, from the nested solve of the uncorrected block.
+/// replaced by the faces') or, without one, from the nested solve of the uncorrected block
+/// (the plain one from the transfinite grid if that fails).
 /// The returned history is the concatenation of all solves.
 #[allow(clippy::too_many_arguments)]
 pub fn grid_volume_corrected(
@@ -90,18 +92,31 @@ pub fn grid_volume_corrected(
                 ),
             ))
         }
-        None => {
-            let (r, _) = nested3d::grid_volume_nested(
-                faces,
-                ControlKind::Algebraic,
-                solver,
-                &loose,
-                place,
-                progress,
-            )?;
-            append(&mut info, r.picard);
-            r.grid
-        }
+        None => match nested3d::grid_volume_nested(
+            faces,
+            ControlKind::Algebraic,
+            solver,
+            &loose,
+            place,
+            progress,
+        ) {
+            Ok((r, _)) => {
+                append(&mut info, r.picard);
+                r.grid
+            }
+            // A coarse level's start can be degenerate where the finest one is not: then
+            // the plain iteration from the transfinite grid.
+            Err(_) => {
+                let mut x = transfinite(faces);
+                faces.apply_to(&mut x);
+                let ctrl = Control3::from_algebraic(&pg);
+                append(
+                    &mut info,
+                    poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)?,
+                );
+                x
+            }
+        },
     };
     if !c.any() {
         return Ok(VolumeResult {
@@ -133,7 +148,13 @@ pub fn grid_volume_corrected(
         if tangent_goals.is_empty() {
             tangent_goals = ortho
                 .iter()
-                .map(|&f| (f, TangentGoals::new(&pg, &x, f, Some(f) != c.wall)))
+                .map(|&f| {
+                    let mut g = TangentGoals::new(&pg, &x, f, Some(f) != c.wall);
+                    if ortho.len() > 1 {
+                        g.cutoff = LAYER_CUTOFF;
+                    }
+                    (f, g)
+                })
                 .collect();
         }
         let err = match (&targets, c.wall) {

@@ -134,9 +134,17 @@ pub struct TangentGoals {
     /// [`MIN_GAP`] of the uncorrected one), not to [`CLAMP`] of the gaps: for interior faces,
     /// whose lines may have to turn by the whole angle of a neighbouring volume's lines.
     free: bool,
+    /// Nodes whose weight ψ is at most this are left alone (0: every node of the columns
+    /// moves towards its goal, the uncorrected offset where ψ is small). With several faces
+    /// corrected in one block, each moves only the nodes of its own layer
+    /// ([`LAYER_CUTOFF`]): a face's goals elsewhere would undo another face's shifts.
+    pub cutoff: f64,
 }
 
-/// With [`TangentGoals::free`]: the smallest gap between neighbouring parameters along a line,
+/// [`TangentGoals::cutoff`] when several faces of a block are corrected.
+pub const LAYER_CUTOFF: f64 = 0.01;
+
+/// With free goals (interior faces): the smallest gap between neighbouring parameters along a line,
 /// as a fraction of the uncorrected gap (the gap [`CLAMP`] keeps at the least).
 pub const MIN_GAP: f64 = 1.0 - 2.0 * CLAMP;
 
@@ -174,7 +182,7 @@ fn tangential(r: V, n: V) -> V {
 
 impl TangentGoals {
     /// Offsets t⁰ and weights ψ from grid `x` and its parameters `pg` (module docs); with
-    /// `free` the shifts are bounded by monotonicity only ([`TangentGoals::free`]).
+    /// `free` (interior faces) the shifts are bounded by monotonicity only.
     pub fn new(pg: &ParamGrid3, x: &Grid3, w: usize, free: bool) -> Self {
         let dims = x.dims();
         let (d, lo) = normal(w);
@@ -209,6 +217,7 @@ impl TangentGoals {
             per_col: dims[d] - 2,
             start: pg.clone(),
             free,
+            cutoff: 0.0,
         }
     }
 
@@ -250,7 +259,7 @@ pub fn shift_tangential(
         let (t0, psi) = (goals.t0[slot], goals.weight[slot]);
         let goal = t0.map(|c| c * (1.0 - psi));
         let Some(nv) = nrm else { return };
-        if psi <= 0.0 {
+        if psi <= goals.cutoff {
             return;
         }
         let len = norm(r);

@@ -52,6 +52,10 @@ impl ConnFile {
 /// One side range: 1-based block, first node, last node.
 pub type Range = (usize, [usize; 3], [usize; 3]);
 
+/// Largest count, index or family id a connectivity file may hold: 2³¹ (the most nodes a job
+/// may have, [`crate::case::limits::MAX_NODES`]).
+pub const MAX_INDEX: usize = 1 << 31;
+
 /// The connectivity of a topology as a file holds it: side a of each interface with growing
 /// indices, b following a's node order; families numbered in order of first use.
 pub fn from_topology(topo: &Topology) -> ConnFile {
@@ -199,19 +203,30 @@ pub fn write_file(path: &Path, c: &ConnFile) -> Result<()> {
 
 /// Reads a connectivity file (as [`write`] writes it).
 pub fn read(path: &Path) -> Result<ConnFile> {
-    let text = crate::io::read_input_string(path)?;
+    parse(&crate::io::read_input_string(path)?, path)
+}
+
+/// Parses the text of a connectivity file; `path` names it in messages.
+///
+/// # Errors
+/// [`Error::Format`] naming `path` and the line if the text is malformed.
+pub fn parse(text: &str, path: &Path) -> Result<ConnFile> {
     let bad = |line: usize, m: &str| Error::Format {
         path: path.to_path_buf(),
         msg: format!("line {}: {m}", line + 1),
     };
+    // the line after the last, for "ends before …"
+    let end = text.lines().count();
     let mut lines = text
         .lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty());
-    let mut next = |what: &str, len: usize| -> Result<Vec<usize>> {
+    // Every number is a count, a 1-based index or a family id: 1 to MAX_INDEX (counts from
+    // 0), so that no later sum or product of them overflows.
+    let mut next = |what: &str, len: usize, from: usize| -> Result<Vec<usize>> {
         let (n, l) = lines
             .next()
-            .ok_or_else(|| bad(usize::MAX - 1, &format!("ends before {what}")))?;
+            .ok_or_else(|| bad(end, &format!("ends before {what}")))?;
         let v: Vec<&str> = l.split_whitespace().collect();
         if v.len() < len {
             return Err(bad(n, &format!("{what}: expected {len} values")));
@@ -220,33 +235,46 @@ pub fn read(path: &Path) -> Result<ConnFile> {
             .iter()
             .map(|s| {
                 s.parse()
-                    .map_err(|_| bad(n, &format!("{what}: '{s}' is not an index")))
+                    .ok()
+                    .filter(|k| (from..=MAX_INDEX).contains(k))
+                    .ok_or_else(|| {
+                        bad(
+                            n,
+                            &format!("{what}: '{s}' is not an index ({from} to {MAX_INDEX})"),
+                        )
+                    })
             })
             .collect()
     };
     let range = |v: &[usize]| (v[0], [v[1], v[2], v[3]], [v[4], v[5], v[6]]);
     let mut c = ConnFile::default();
-    let n = next("the interface count", 1)?[0];
+    let n = next("the interface count", 1, 0)?[0];
     for _ in 0..n {
-        let a = next("an interface", 7)?;
-        let b = next("an interface", 7)?;
+        let a = next("an interface", 7, 1)?;
+        let b = next("an interface", 7, 1)?;
         c.interfaces.push([range(&a), range(&b)]);
     }
-    let n = next("the patch count", 1)?[0];
+    let n = next("the patch count", 1, 0)?[0];
     for _ in 0..n {
-        let p = next("a patch", 8)?;
+        let p = next("a patch", 8, 1)?;
         c.patches.push((range(&p), p[7]));
     }
-    let n = next("the family count", 1)?[0];
+    let n = next("the family count", 1, 0)?[0];
     for _ in 0..n {
         let (k, l) = lines
             .next()
-            .ok_or_else(|| bad(usize::MAX - 1, "ends before a family"))?;
+            .ok_or_else(|| bad(end, "ends before a family"))?;
         let mut it = l.split_whitespace();
         let id = it
             .next()
             .and_then(|s| s.parse().ok())
-            .ok_or_else(|| bad(k, "a family line starts with its id"))?;
+            .filter(|k| (1..=MAX_INDEX).contains(k))
+            .ok_or_else(|| {
+                bad(
+                    k,
+                    &format!("a family line starts with its id (1 to {MAX_INDEX})"),
+                )
+            })?;
         c.families.push((id, it.collect::<Vec<_>>().join(" ")));
     }
     // optional: boundary conditions given explicitly, "family-id kind" per line

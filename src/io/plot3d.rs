@@ -173,13 +173,20 @@ pub fn write_plot3d<B: Borrow<Block>>(
 
 /// Reads a Plot3D grid file of any flavour, detected from its contents.
 pub fn read_plot3d(path: &Path) -> Result<Plot3dFile> {
-    let data = crate::io::read_input(path)?;
+    parse_plot3d(&crate::io::read_input(path)?, path)
+}
+
+/// Parses the contents of a Plot3D grid file of any flavour; `path` names it in messages.
+///
+/// # Errors
+/// [`Error::Format`] naming `path`, the block and the record if the contents are malformed.
+pub fn parse_plot3d(data: &[u8], path: &Path) -> Result<Plot3dFile> {
     let parsed = if data.is_empty() {
         Err("empty file".to_string())
-    } else if let Some(text) = as_text(&data) {
+    } else if let Some(text) = as_text(data) {
         ascii::parse(text)
     } else {
-        binary::parse(&data)
+        binary::parse(data)
     };
     parsed
         .and_then(into_file)

@@ -14,8 +14,15 @@ use crate::{Error, Grid2, Grid3, Result};
 
 /// Reads one `.vts` file.
 pub fn read_vts(path: &Path) -> Result<Block> {
-    let bytes = crate::io::read_input(path)?;
-    parse_vts(&bytes).map_err(|m| Error::format(path, m))
+    vts_from_bytes(&crate::io::read_input(path)?, path)
+}
+
+/// Parses the contents of a `.vts` file; `path` names it in messages.
+///
+/// # Errors
+/// [`Error::Format`] naming `path` if the contents are malformed.
+pub fn vts_from_bytes(bytes: &[u8], path: &Path) -> Result<Block> {
+    parse_vts(bytes).map_err(|m| Error::format(path, m))
 }
 
 /// Reads a `.vtm` index and every `.vts` it lists (paths relative to the index): (name, block).
@@ -28,7 +35,10 @@ pub fn read_vtm(path: &Path) -> Result<Vec<(String, Block)>> {
         let file = attr(el, "file")
             .ok_or_else(|| Error::format(path, format!("DataSet {} has no file", k + 1)))?;
         let name = attr(el, "name").unwrap_or_else(|| format!("block{}", k + 1));
-        out.push((name, read_vts(&dir.join(file))?));
+        // a listed file's error names the index too
+        let block = read_vts(&dir.join(file))
+            .map_err(|e| Error::format(path, format!("DataSet {} ('{name}'): {e}", k + 1)))?;
+        out.push((name, block));
     }
     if out.is_empty() {
         return Err(Error::format(path, "no DataSet with a file in this .vtm"));

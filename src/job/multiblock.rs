@@ -11,9 +11,10 @@ use crate::grid::boundary::Boundary2;
 use crate::grid::topology::{Group, Topology};
 use crate::grid::Grid2;
 use crate::io::Block;
+use crate::quality;
 use crate::quality::interface::{interface_smoothness, InterfaceSmoothness};
-use crate::quality::{self, QualityReport};
 use crate::solve;
+use crate::surface::face::{grid_face_on, project_boundary};
 use crate::{Error, Result};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -144,7 +145,7 @@ fn grid_group(
     let lists = case.group_points(g)?;
     let params = &spec.picard;
     let mut out = Vec::new();
-    let mut finish = |b: usize, block: Block, picard: &PicardInfo, q: QualityReport, d| {
+    let mut finish = |b: usize, block: Block, picard: Option<&PicardInfo>, q, d, steps| {
         let dims = block.dims();
         let rep = BlockReport {
             name: topo.blocks[b].name.clone(),
@@ -152,8 +153,8 @@ fn grid_group(
             nj: dims[1],
             seconds: t0.elapsed().as_secs_f64(),
             group: (g.pieces.len() > 1).then(|| g.name.clone()),
-            picard: Some(picard.clone()),
-            surface_steps: None,
+            picard: picard.cloned(),
+            surface_steps: steps,
             surface_distance: d,
             quality: q,
         };
@@ -166,7 +167,7 @@ fn grid_group(
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality2d(&grid);
-                finish(p.block, Block::Planar(grid), &r.picard, q, None);
+                finish(p.block, Block::Planar(grid), Some(&r.picard), q, None, None);
             }
         }
         BlockKind::Minimal => {
@@ -181,12 +182,65 @@ fn grid_group(
                     Some(s) => Some(surface_distance(&grid, s.as_ref(), &at)?),
                     None => None,
                 };
-                finish(p.block, Block::Surface(grid), &r.picard, q, d);
+                finish(p.block, Block::Surface(grid), Some(&r.picard), q, d, None);
             }
         }
-        BlockKind::Surface => unreachable!("refused when the topology is built"),
+        BlockKind::Surface => {
+            // Section 4 on the blocks' surface, for any sides lying on it (surface::face); a
+            // row joined by floating edges is one face on one surface.
+            let surface = group_surface(case, g, &place)?;
+            let uv = project_boundary(surface.as_ref(), &lists, &place)?;
+            let r = grid_face_on(
+                surface.as_ref(),
+                &lists,
+                &uv,
+                g.orthogonal,
+                solver.as_mut(),
+                &place,
+            )?;
+            let (grid, times) = (r.result.grid, r.result.times);
+            for p in &g.pieces {
+                let piece = p.cut(&grid);
+                let q = quality::quality_surface(&piece);
+                let steps = Some(times.clone());
+                finish(
+                    p.block,
+                    Block::Surface(piece),
+                    r.uv_picard.as_ref(),
+                    q,
+                    None,
+                    steps,
+                );
+            }
+        }
     }
     Ok(out)
+}
+
+/// The surface of a group of surface blocks: every block of a row joined by floating edges
+/// must name the same `[[surface]]`.
+fn group_surface(
+    case: &LoadedCase,
+    g: &Group,
+    place: &str,
+) -> Result<Box<dyn ellipgrid_geometry::Surface>> {
+    use crate::case::spec::SurfaceRef;
+    let first = &case.case.blocks[g.pieces[0].block].surface;
+    if g.pieces.len() > 1 {
+        let same = g.pieces.iter().all(|p| {
+            matches!(
+                (&case.case.blocks[p.block].surface, first),
+                (Some(SurfaceRef::Named(a)), Some(SurfaceRef::Named(b))) if a == b
+            )
+        });
+        if !same {
+            return Err(Error::input(
+                place,
+                "surface blocks joined by floating edges must name one [[surface]]",
+            ));
+        }
+    }
+    case.surface(g.pieces[0].block)
 }
 
 fn solve_group<const D: usize>(

@@ -88,10 +88,23 @@ pub fn smooth_blocks(
             ));
         }
     }
+    let selected = |k: usize| opts.blocks.as_ref().is_none_or(|s| s.contains(&(k + 1)));
+    // The memory of the regridding (a direct solve's LU above all) before any of it starts;
+    // volume blocks take the direct solver only when small (`regrid_volume`).
+    let mut budget = crate::case::limits::Budget::default();
+    for (k, b) in blocks.iter().enumerate().filter(|(k, _)| selected(*k)) {
+        use crate::case::limits::{BYTES_PER_NODE_2D, BYTES_PER_NODE_3D};
+        let at = format!("{file}: block {}", k + 1);
+        match b {
+            Block::Volume(_) => budget.add(&at, &b.dims(), BYTES_PER_NODE_3D)?,
+            _ => budget.add_solved(&at, &b.dims()[..2], BYTES_PER_NODE_2D, &opts.linear)?,
+        }
+    }
+    budget.check_memory(file)?;
     let mut out = Vec::with_capacity(blocks.len());
     let mut reports = Vec::new();
     for (k, b) in blocks.iter().enumerate() {
-        let selected = opts.blocks.as_ref().is_none_or(|s| s.contains(&(k + 1)));
+        let selected = selected(k);
         if !selected {
             out.push(b.clone());
             continue;

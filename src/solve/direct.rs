@@ -24,6 +24,21 @@ fn fixed_partition() {
     SET.call_once(|| faer::set_global_parallelism(faer::Par::rayon(2)));
 }
 
+/// Estimated peak memory of faer's sparse LU of `unknowns` unknowns of a nine-point (`dim`
+/// 2) or 19-point (`dim` 3) operator, in bytes: 250 N log₂ N in 2D, 120 N^1.55 in 3D. The
+/// measured peaks (`examples/bench_direct_memory.rs`) lie below it at every size measured:
+/// 2D from 65² (10 MB, 0.95× of 200 N log₂ N) to 1025² (4.5 GB, 0.93×); 3D from 13³ (7 MB)
+/// to 49³ (6.7 GB, 0.95× of 120 N^1.55). A volume block of 81³ nodes would need ~80 GB.
+pub fn lu_bytes(unknowns: usize, dim: usize) -> u64 {
+    let n = unknowns as f64;
+    let b = if dim == 2 {
+        250.0 * n * n.log2().max(1.0)
+    } else {
+        120.0 * n.powf(1.55)
+    };
+    b as u64
+}
+
 /// A factored sparse matrix: faer's LU, shared by the 2D and 3D direct solvers.
 pub struct SparseLu {
     lu: Lu<usize, f64>,
@@ -34,11 +49,20 @@ impl SparseLu {
     /// Factors the n × n matrix given as triplets (row, column, value).
     pub fn factor(n: usize, t: &[Triplet<usize, usize, f64>]) -> Result<Self, SolveError> {
         fixed_partition();
-        let m = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, t)
-            .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
-        let lu = m
-            .sp_lu()
-            .map_err(|e| SolveError::Singular(format!("{e:?}")))?;
+        use faer::sparse::{linalg::LuError, CreationError, FaerError};
+        let oom = |e: &dyn std::fmt::Debug| SolveError::OutOfMemory {
+            unknowns: n,
+            what: format!("ran out of memory ({e:?})"),
+        };
+        let m =
+            SparseColMat::<usize, f64>::try_new_from_triplets(n, n, t).map_err(|e| match e {
+                CreationError::Generic(FaerError::OutOfMemory) => oom(&e),
+                _ => SolveError::Singular(format!("{e:?}")),
+            })?;
+        let lu = m.sp_lu().map_err(|e| match e {
+            LuError::Generic(FaerError::OutOfMemory) => oom(&e),
+            _ => SolveError::Singular(format!("{e:?}")),
+        })?;
         Ok(SparseLu { lu, n })
     }
 

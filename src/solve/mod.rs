@@ -100,6 +100,13 @@ pub enum SolveError {
     NotConverged { iterations: usize, residual: f64 },
     #[error("linear solver: solve called before setup")]
     NotSetUp,
+    /// The direct solver's LU does not fit in memory; `what` says by how much, or that the
+    /// factorization ran out.
+    #[error(
+        "linear solver: the direct LU of {unknowns} unknowns {what}: use linear = \"multigrid\" \
+         (or \"bicgstab\" for a volume block)"
+    )]
+    OutOfMemory { unknowns: usize, what: String },
 }
 
 /// A solver for structured systems `A x = b` with the operator `A`: nine-point

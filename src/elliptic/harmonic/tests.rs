@@ -207,3 +207,16 @@ fn bad_input_is_an_error_naming_the_place() {
     .to_string();
     assert!(m.contains("cell (2, 1)") && m.contains("degenerate"), "{m}");
 }
+
+#[test]
+fn nodes_outside_the_unknowns_have_no_position() {
+    // Found by fuzzing (issue #17): `pos` computed `ii + nx·jj` for a wrapped (outside)
+    // index before testing it, which overflows in builds with overflow checks.
+    let d = EdgeCondition::Dirichlet(vec![0.0; 5]);
+    let u = Unknowns::new(5, 5, &[d.clone(), d.clone(), d.clone(), d]);
+    assert_eq!(u.pos(0, 3), None);
+    assert_eq!(u.pos(3, 0), None);
+    assert_eq!(u.pos(4, 4), None);
+    assert_eq!(u.pos(1, 1), Some(0));
+    assert_eq!(u.pos(3, 3), Some(8));
+}

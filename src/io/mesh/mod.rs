@@ -359,7 +359,7 @@ fn diameter(views: &[View]) -> f64 {
     (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
 }
 
-/// A range's 0-based corners, checked against the block's node counts.
+/// A range's 0-based corners, checked against the block's node counts and to lie on a side.
 pub(crate) fn corners(
     place: &str,
     blocks: &[(String, Block)],
@@ -394,6 +394,20 @@ pub(crate) fn corners(
         }
         lo[c] = a - 1;
         hi[c] = z - 1;
+    }
+    // A side: one index (of a direction with more than one node) stays at its first or last
+    // value. Anything else (an interior plane, the whole block) is no interface or patch.
+    let on_side =
+        (0..3).any(|c| v.dims[c] > 1 && lo[c] == hi[c] && (lo[c] == 0 || lo[c] == v.dims[c] - 1));
+    if !on_side {
+        return Err(Error::input(
+            place,
+            format!(
+                "{what}: range {:?}…{:?} is not on a side of block '{}' ({} × {} × {} nodes): \
+                 one index must stay at 1 or at its last value",
+                r.1, r.2, blocks[b].0, v.dims[0], v.dims[1], v.dims[2]
+            ),
+        ));
     }
     Ok((b, lo, hi))
 }
