@@ -46,7 +46,11 @@ fn variants() -> Vec<String> {
 
 fn run(label: &str, file: &str, edit: impl Fn(&str) -> String, repeat: usize) {
     let args: Vec<String> = std::env::args().collect();
-    if let Some(only) = args.iter().position(|a| a == "--only").and_then(|k| args.get(k + 1)) {
+    if let Some(only) = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|k| args.get(k + 1))
+    {
         if !label.starts_with(only.as_str()) {
             return;
         }

@@ -113,7 +113,10 @@ impl<const D: usize> Coupling<D> {
             }
         };
         if use_par(nx * ny) {
-            let rows = out.coefs_mut().par_chunks_mut(nx).zip(a.coefs().par_chunks(nx));
+            let rows = out
+                .coefs_mut()
+                .par_chunks_mut(nx)
+                .zip(a.coefs().par_chunks(nx));
             rows.enumerate().for_each(row);
         } else {
             let rows = out.coefs_mut().chunks_mut(nx).zip(a.coefs().chunks(nx));
@@ -283,7 +286,8 @@ mod tests {
             let mut h = g.clone();
             for c in 0..2 {
                 for p in 0..n {
-                    h.coord_mut(c)[(p % nx + 1) + g.ni() * (p / nx + 1)] += sign * eps * v[c * n + p];
+                    h.coord_mut(c)[(p % nx + 1) + g.ni() * (p / nx + 1)] +=
+                        sign * eps * v[c * n + p];
                 }
             }
             residual(&h, &ctrl)
@@ -292,7 +296,11 @@ mod tests {
         let scale = jv.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for q in 0..2 * n {
             let fd = -(rp[q] - rm[q]) / (2.0 * eps);
-            assert!((fd - jv[q]).abs() < 1e-7 * scale, "row {q}: {fd} vs {}", jv[q]);
+            assert!(
+                (fd - jv[q]).abs() < 1e-7 * scale,
+                "row {q}: {fd} vs {}",
+                jv[q]
+            );
         }
         // the coupling is not negligible: the Picard operator alone is off
         let mut av = vec![0.0; n];

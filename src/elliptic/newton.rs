@@ -155,7 +155,7 @@ pub(crate) fn run<S: NewtonSystem>(
                 rejected_at = None;
                 sys.linearize();
                 let ctl = SolveControl {
-                    rel_tol: std::env::var("FORCE_ETA").ok().and_then(|v| v.parse().ok()).unwrap_or(forcing(params, prev_update, last_update)),
+                    rel_tol: forcing(params, prev_update, last_update),
                     ..*ctl
                 };
                 let ctl = &ctl;
@@ -193,11 +193,9 @@ pub(crate) fn run<S: NewtonSystem>(
                     let update = sys.apply_scaled(&buf.delta, lambda, lambda * largest);
                     if update.is_finite() {
                         let trial = evaluate(&mut *sys);
-                        if trial <= (1.0 - ARMIJO * lambda) * residual
-                            || update <= params.tolerance
+                        if trial <= (1.0 - ARMIJO * lambda) * residual || update <= params.tolerance
                         {
                             cached = Some(trial);
-                            if lambda < 1.0 && std::env::var("NEWTON_DEBUG").is_ok() { eprintln!("half step"); }
                             moved = update;
                             prev_update = last_update;
                             last_update = update;
@@ -238,10 +236,6 @@ pub(crate) fn run<S: NewtonSystem>(
         },
         progress,
     )?;
-    if std::env::var("NEWTON_DEBUG").is_ok() {
-        let h: Vec<String> = history.iter().map(|h| format!("{:.1e}/{:?}/r{:.0e}/{:.0e}", h.update, h.linear_iterations, h.residual, h.linear_residual.iter().cloned().fold(0.0, f64::max))).collect();
-        eprintln!("{place} n={}: {}", sys.nodes(), h.join(" "));
-    }
     let final_residual = match cached {
         Some(r) => r,
         None => evaluate(&mut *sys),
@@ -314,9 +308,8 @@ fn krylov<S: NewtonSystem>(
     if from_zero {
         delta.fill(0.0);
     }
-    let kmax = std::env::var("KMAX").ok().and_then(|v| v.parse().ok()).unwrap_or(KRYLOV_MAX);
     let ctl = SolveControl {
-        max_iter: kmax,
+        max_iter: KRYLOV_MAX,
         ..*ctl
     };
     let info = gmres(
@@ -341,7 +334,7 @@ fn krylov<S: NewtonSystem>(
         rhs,
         delta,
         &ctl,
-        kmax,
+        KRYLOV_MAX,
         krylov,
     )?;
     if let Some(e) = failed.into_inner().unwrap_or_else(|e| e.into_inner()) {
@@ -387,196 +380,4 @@ fn forcing(params: &PicardParams, prev: f64, last: f64) -> f64 {
     (rho * rho)
         .max(0.5 * params.tolerance / (rho * last))
         .clamp(floor, cap)
-}
-
-#[cfg(test)]
-mod scratch {
-    use crate::algebraic::control2d::control_for;
-    use crate::algebraic::ControlKind;
-    use crate::elliptic::jacobian2d::Coupling;
-    use crate::elliptic::picard::PicardParams;
-    use crate::elliptic::poisson2d;
-    use crate::grid::boundary::Boundary2;
-    use crate::grid::Grid2;
-    use crate::io::Block;
-    use crate::solve::direct::DirectLu;
-    use crate::solve::gmres::{gmres, GmresWorkspace};
-    use crate::solve::multigrid::{MgParams, Multigrid};
-    use crate::solve::stencil9::Stencil9;
-    use crate::solve::{LinearSolver, SolveControl};
-
-    #[test]
-    #[ignore]
-    fn precond_study() {
-        let path = std::env::var("GRID").unwrap_or("/tmp/nw/naca65.x".into());
-        let blk: usize = std::env::var("BLK").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
-        let f = crate::io::plot3d::read_plot3d(std::path::Path::new(&path)).unwrap();
-        let g: Grid2<2> = match &f.blocks[blk] {
-            Block::Planar(g) => g.clone(),
-            _ => panic!(),
-        };
-        let b = Boundary2::from_grid(&g, "b").unwrap();
-        let ctrl = control_for(&b, ControlKind::Algebraic);
-        let mut x = g.clone();
-        let params = PicardParams { tolerance: 1e-12, ..Default::default() };
-        let mut mgs = crate::solve::multigrid::MultigridSafe::new(MgParams::default());
-        let info = poisson2d::solve(&mut x, &ctrl, &mut mgs, &params, "b").unwrap();
-        println!("picard steps {} conv {}", info.steps, info.converged);
-        let h = &info.history;
-        for w in h.windows(2) { print!("{:.2} ", w[1].update / w[0].update); }
-        println!();
-        let (nx, ny) = (x.ni() - 2, x.nj() - 2);
-        let n = nx * ny;
-        let mut a = Stencil9::zeros(nx, ny);
-        let mut rhs = [vec![0.0; n], vec![0.0; n]];
-        poisson2d::assemble(&x, &ctrl, &mut a, &mut rhs);
-        let mut cp = Coupling::<2>::new(nx, ny);
-        cp.linearize(&x, &ctrl);
-        // A − G_cc per coordinate
-        let own: Vec<Stencil9> = (0..2).map(|c| {
-            let mut m = a.clone();
-            for p in 0..n {
-                let gq = &cp.g[p * 8 + 2 * (c * 2 + c)..];
-                let (gx, gy) = (gq[0], gq[1]);
-                let st = &mut m.coefs_mut()[p];
-                st[5] -= gx; st[3] += gx; st[7] -= gy; st[1] += gy;
-            }
-            m.clip_to_grid();
-            m
-        }).collect();
-        let diag: Vec<f64> = a.coefs().iter().map(|s| s[4]).collect();
-        {
-            let t = std::time::Instant::now();
-            let mut m = Multigrid::new(MgParams::default()); m.setup(&a).unwrap();
-            let t1 = t.elapsed().as_secs_f64();
-            let t = std::time::Instant::now();
-            m.setup(&own[0]).unwrap();
-            let t2 = t.elapsed().as_secs_f64();
-            let t = std::time::Instant::now();
-            m.update(&own[1]).unwrap();
-            let t3 = t.elapsed().as_secs_f64();
-            let mut o = vec![0.0; n];
-            let t = std::time::Instant::now();
-            for _ in 0..10 { m.precondition(&diag, &mut o).unwrap(); }
-            let t4 = t.elapsed().as_secs_f64() / 10.0;
-            let mut jv = vec![0.0; 2 * n];
-            let v2: Vec<f64> = (0..2*n).map(|q| q as f64).collect();
-            let t = std::time::Instant::now();
-            for _ in 0..10 { cp.apply(&a, &v2, &mut jv); }
-            let t5 = t.elapsed().as_secs_f64() / 10.0;
-            let t = std::time::Instant::now();
-            for _ in 0..10 { cp.linearize(&x, &ctrl); }
-            let t6 = t.elapsed().as_secs_f64() / 10.0;
-            let t = std::time::Instant::now();
-            let mut rr = [vec![0.0; n], vec![0.0; n]];
-            for _ in 0..10 { poisson2d::assemble(&x, &ctrl, &mut a.clone(), &mut rr); }
-            let t7 = t.elapsed().as_secs_f64() / 10.0;
-            println!("n {n}: setup+alloc {:.1} ms, setup {:.1} ms, update {:.1} ms, cycle {:.2} ms, J apply (2 coords) {:.2} ms, linearize {:.2} ms, assemble(+clone) {:.2} ms", t1*1e3, t2*1e3, t3*1e3, t4*1e3, t5*1e3, t6*1e3, t7*1e3);
-        }
-        // rhs: smooth random-ish
-        let r: Vec<f64> = (0..2 * n).map(|q| (((q * 7919) % 101) as f64 / 101.0 - 0.5) * diag[q % n]).collect();
-        let ctl = SolveControl { rel_tol: 1e-8, max_iter: 200 };
-        let mut lu = DirectLu::new(); lu.setup(&a).unwrap();
-        let mut mg = Multigrid::new(MgParams::default()); mg.setup(&a).unwrap();
-        let lus: Vec<DirectLu> = own.iter().map(|m| { let mut l = DirectLu::new(); l.setup(m).unwrap(); l }).collect();
-        let mgs2: Vec<Multigrid> = own.iter().map(|m| { let mut l = Multigrid::new(MgParams::default()); l.setup(m).unwrap(); l }).collect();
-        // v + G_cd z for the coupling block at offset q (1: c=0,d=1; 2: c=1,d=0)
-        let couple = |z: &[f64], v: &[f64], q: usize| -> Vec<f64> {
-            let mut w = v.to_vec();
-            for jj in 0..ny { for ii in 0..nx {
-                let p = ii + nx * jj;
-                let at = |i: isize, j: isize| if i < 0 || j < 0 || i >= nx as isize || j >= ny as isize { 0.0 } else { z[i as usize + nx * j as usize] };
-                let gq = &cp.g[p * 8 + 2 * q..];
-                let (i, j) = (ii as isize, jj as isize);
-                w[p] += gq[0] * (at(i+1,j) - at(i-1,j)) + gq[1] * (at(i,j+1) - at(i,j-1));
-            }}
-            w
-        };
-        let cases: Vec<(&str, Box<dyn Fn(&[f64], &mut [f64])>)> = vec![
-            ("A exact", Box::new(|v: &[f64], o: &mut [f64]| { for c in 0..2 { lu.precondition(&v[c*n..(c+1)*n], &mut o[c*n..(c+1)*n]).unwrap(); } })),
-            ("A 1 cycle", Box::new(|v: &[f64], o: &mut [f64]| { for c in 0..2 { mg.precondition(&v[c*n..(c+1)*n], &mut o[c*n..(c+1)*n]).unwrap(); } })),
-            ("A-Gcc exact", Box::new(|v: &[f64], o: &mut [f64]| { for c in 0..2 { lus[c].precondition(&v[c*n..(c+1)*n], &mut o[c*n..(c+1)*n]).unwrap(); } })),
-            ("A-Gcc cycle", Box::new(|v: &[f64], o: &mut [f64]| { for c in 0..2 { mgs2[c].precondition(&v[c*n..(c+1)*n], &mut o[c*n..(c+1)*n]).unwrap(); } })),
-            ("blockGS exact", Box::new(|v: &[f64], o: &mut [f64]| {
-                lus[0].precondition(&v[..n], &mut o[..n]).unwrap();
-                // v1 + G_10 z0: G_10 z0 at p = gξ(1,0)(z0[e]-z0[w]) + gη(1,0)(z0[n]-z0[s])
-                let z0 = o[..n].to_vec();
-                let mut w = v[n..].to_vec();
-                for jj in 0..ny { for ii in 0..nx {
-                    let p = ii + nx * jj;
-                    let at = |i: isize, j: isize| if i < 0 || j < 0 || i >= nx as isize || j >= ny as isize { 0.0 } else { z0[i as usize + nx * j as usize] };
-                    let gq = &cp.g[p * 8 + 2 * 2..];
-                    let (i, j) = (ii as isize, jj as isize);
-                    w[p] += gq[0] * (at(i+1,j) - at(i-1,j)) + gq[1] * (at(i,j+1) - at(i,j-1));
-                }}
-                lus[1].precondition(&w, &mut o[n..]).unwrap();
-            })),
-            ("blockGS A exact", Box::new(|v: &[f64], o: &mut [f64]| {
-                lu.precondition(&v[..n], &mut o[..n]).unwrap();
-                let w = couple(&o[..n], &v[n..], 2);
-                lu.precondition(&w, &mut o[n..]).unwrap();
-            })),
-            ("blockGS A cycle", Box::new(|v: &[f64], o: &mut [f64]| {
-                mg.precondition(&v[..n], &mut o[..n]).unwrap();
-                let w = couple(&o[..n], &v[n..], 2);
-                mg.precondition(&w, &mut o[n..]).unwrap();
-            })),
-            ("blockGS yx A cycle", Box::new(|v: &[f64], o: &mut [f64]| {
-                mg.precondition(&v[n..], &mut o[n..]).unwrap();
-                let w = couple(&o[n..], &v[..n], 1);
-                mg.precondition(&w, &mut o[..n]).unwrap();
-            })),
-            ("blockGS A-Gcc cycle", Box::new(|v: &[f64], o: &mut [f64]| {
-                mgs2[0].precondition(&v[..n], &mut o[..n]).unwrap();
-                let w = couple(&o[..n], &v[n..], 2);
-                mgs2[1].precondition(&w, &mut o[n..]).unwrap();
-            })),
-        ];
-        for (name, pc) in cases.iter() {
-            let mut dx = vec![0.0; 2 * n];
-            let mut ws = GmresWorkspace::default();
-            let info = gmres(&mut |v, o| cp.apply(&a, v, o), &mut |v, o| pc(v, o), &r, &mut dx, &ctl, 200, &mut ws).unwrap();
-            let hist: Vec<String> = info.residual_history.iter().take(12).map(|v| format!("{v:.0e}")).collect();
-            println!("{name:<14} its {:>3}  {}", info.iterations, hist.join(" "));
-        }
-    }
-}
-
-#[cfg(test)]
-mod scratch2 {
-    use crate::algebraic::ControlKind;
-    use crate::elliptic::nested::grid_block_nested;
-    use crate::elliptic::picard::{Nonlinear, PicardParams};
-    use crate::grid::boundary::Boundary2;
-    use crate::grid::Grid2;
-    use crate::io::Block;
-    use crate::solve::multigrid::{MgParams, MultigridSafe};
-
-    #[test]
-    #[ignore]
-    fn nlr_step1() {
-        let path = std::env::var("GRID").unwrap_or("/tmp/nw/nlr.x".into());
-        let blk: usize = std::env::var("BLK").ok().and_then(|v| v.parse().ok()).unwrap_or(7);
-        let f = crate::io::plot3d::read_plot3d(std::path::Path::new(&path)).unwrap();
-        let g: Grid2<2> = match &f.blocks[blk] { Block::Planar(g) => g.clone(), _ => panic!() };
-        println!("block {} x {}", g.ni(), g.nj());
-        let b = Boundary2::from_grid(&g, "b").unwrap();
-        let mut grids = Vec::new();
-        for (nl, tol) in [(Nonlinear::Picard, 1e-10), (Nonlinear::Newton, 1e-10), (Nonlinear::Picard, 1e-13), (Nonlinear::Newton, 1e-13)] {
-            let params = PicardParams { tolerance: tol, nonlinear: nl, ..Default::default() };
-            let mut mg = MultigridSafe::new(MgParams::default());
-            let (r, _) = grid_block_nested(&b, ControlKind::Algebraic, &mut mg, &params, "b").unwrap();
-            println!("{nl:?} {tol}: steps {} conv {} res {:.1e}", r.picard.steps, r.picard.converged, r.picard.final_residual);
-            grids.push(r.grid);
-        }
-        let d = |a: &Grid2<2>, b: &Grid2<2>| (0..2).map(|c| a.coord(c).iter().zip(b.coord(c)).fold(0.0f64, |m, (u, v)| m.max((u - v).abs()))).fold(0.0, f64::max) / a.diameter();
-        println!("P10-P13 {:.1e}  N10-N13 {:.1e}  P13-N13 {:.1e} P10-N10 {:.1e}", d(&grids[0], &grids[2]), d(&grids[1], &grids[3]), d(&grids[2], &grids[3]), d(&grids[0], &grids[1]));
-        for orth in [[false, false, true, false], [false, false, false, true], [false, false, true, true], [true, true, true, true]] {
-            for (k, gg) in grids.iter().enumerate() {
-                let mut mg = MultigridSafe::new(MgParams::default());
-                let r = crate::elliptic::harmonic::harmonic_st(gg, orth, &mut mg, "h");
-                println!("orth {orth:?} grid {k}: {}", if r.is_ok() { "ok".to_string() } else { format!("{}", r.err().unwrap()) });
-            }
-        }
-    }
 }

@@ -49,7 +49,7 @@ pub struct PicardParams {
 }
 
 /// The nonlinear iteration of a grid system (`[solver] nonlinear`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Nonlinear {
     /// Picard iteration [43, 44]: the metric coefficients frozen at each step.
@@ -58,6 +58,21 @@ pub enum Nonlinear {
     /// Newton's method on [24], GMRES preconditioned by the Picard operator's solver
     /// ([`crate::elliptic::newton`]).
     Newton,
+}
+
+impl<'de> serde::Deserialize<'de> for Nonlinear {
+    /// "picard" or "newton"; any other value is refused naming the key (the table is
+    /// flattened into `[solver]`, whose error would otherwise only list the variants).
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let s = String::deserialize(d)?;
+        match s.as_str() {
+            "picard" => Ok(Nonlinear::Picard),
+            "newton" => Ok(Nonlinear::Newton),
+            _ => Err(serde::de::Error::custom(format!(
+                "nonlinear = \"{s}\": must be \"picard\" or \"newton\""
+            ))),
+        }
+    }
 }
 
 impl Default for PicardParams {
@@ -105,6 +120,12 @@ impl PicardParams {
         count("max_steps", self.max_steps, 1, MAX_STEPS)?;
         count("linear_max_iter", self.linear_max_iter, 1, MAX_STEPS)?;
         count("anderson", self.anderson, 0, MAX_ANDERSON)?;
+        if self.anderson > 0 && self.nonlinear == Nonlinear::Newton {
+            return Err(format!(
+                "anderson = {}: accelerates Picard steps only; use anderson = 0 with nonlinear = \"newton\"",
+                self.anderson
+            ));
+        }
         let f = self.linear_forcing;
         if !(f.is_finite() && (0.0..1.0).contains(&f)) {
             return Err(format!(

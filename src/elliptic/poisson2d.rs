@@ -335,7 +335,10 @@ impl<const D: usize> NewtonSystem for System2<'_, D> {
             self.blocks = false;
             return self.solver.setup(&self.a);
         }
-        let cp = self.coupling.as_ref().expect("linearize before the preconditioner");
+        let cp = self
+            .coupling
+            .as_ref()
+            .expect("linearize before the preconditioner");
         let scratch = self
             .scratch
             .get_or_insert_with(|| Stencil9::zeros(self.a.nx(), self.a.ny()));
@@ -362,7 +365,10 @@ impl<const D: usize> NewtonSystem for System2<'_, D> {
                 .collect();
         }
         // block Gauss–Seidel over the coordinates: (A − G_cc) z_c = v_c + Σ_{d<c} G_cd z_d
-        let cp = self.coupling.as_ref().expect("linearize before the preconditioner");
+        let cp = self
+            .coupling
+            .as_ref()
+            .expect("linearize before the preconditioner");
         for c in 0..D {
             let (done, rest) = out.split_at_mut(c * n);
             let w = &mut v[c * n..(c + 1) * n];

@@ -71,14 +71,12 @@ pub fn gmres(
     ws.fit(n, m);
     let GmresWorkspace { v, z, w } = ws;
     // r = b − A x into v_0
-    let residual = |apply: &mut dyn FnMut(&[f64], &mut [f64]),
-                    x: &[f64],
-                    r: &mut [f64],
-                    w: &mut [f64]| {
-        apply(x, w);
-        update(r, |i, ri| *ri = b[i] - w[i]);
-        dot(r, r).sqrt()
-    };
+    let residual =
+        |apply: &mut dyn FnMut(&[f64], &mut [f64]), x: &[f64], r: &mut [f64], w: &mut [f64]| {
+            apply(x, w);
+            update(r, |i, ri| *ri = b[i] - w[i]);
+            dot(r, r).sqrt()
+        };
     let mut beta = residual(apply, x, &mut v[0], w);
     let r0 = beta;
     if let Some(done) = SolveInfo::start(r0)? {
@@ -117,7 +115,11 @@ pub fn gmres(
             }
             let (a, c) = (col[k], col[k + 1]);
             let rr = a.hypot(c);
-            (cs[k], sn[k]) = if rr > 0.0 { (a / rr, c / rr) } else { (1.0, 0.0) };
+            (cs[k], sn[k]) = if rr > 0.0 {
+                (a / rr, c / rr)
+            } else {
+                (1.0, 0.0)
+            };
             col[k] = rr;
             col[k + 1] = 0.0;
             g[k + 1] = -sn[k] * g[k];
@@ -256,7 +258,10 @@ mod tests {
             .sqrt()
             / b.iter().map(|v| v * v).sum::<f64>().sqrt();
         let last = *pre.residual_history.last().unwrap();
-        assert!((true_rel - last).abs() <= 1e-3 * last.max(1e-14), "{true_rel} vs {last}");
+        assert!(
+            (true_rel - last).abs() <= 1e-3 * last.max(1e-14),
+            "{true_rel} vs {last}"
+        );
     }
 
     #[test]
