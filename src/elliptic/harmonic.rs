@@ -228,7 +228,7 @@ fn dirichlet_values<const D: usize>(
 /// The relative residual accepted when the iteration stalls short of its 1e-12 target.
 const ACCEPT: f64 = 1e-9;
 
-/// Unknowns up to which a harmonic problem whose iteration stalls above [`ACCEPT`] is solved
+/// Unknowns up to which a harmonic problem whose iteration stalls above `ACCEPT` (1e-9) is solved
 /// by sparse LU instead ([`DirectLu`]: exact to round-off, memory ~N log N).
 pub const DIRECT_FALLBACK: usize = 250_000;
 

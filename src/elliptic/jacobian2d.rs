@@ -94,7 +94,8 @@ impl<const D: usize> Coupling<D> {
         let (nx, ny) = (self.nx, self.ny);
         assert_eq!((out.nx(), out.ny()), (nx, ny));
         let q = 2 * (c * D + c);
-        let row = |(jj, (orow, arow)): (usize, (&mut [[f64; 9]], &[[f64; 9]]))| {
+        type Rows<'r> = (usize, (&'r mut [[f64; 9]], &'r [[f64; 9]]));
+        let row = |(jj, (orow, arow)): Rows<'_>| {
             for (ii, (o, st)) in orow.iter_mut().zip(arow).enumerate() {
                 let gn = &self.g[(ii + nx * jj) * Self::STRIDE + q..];
                 *o = *st;
@@ -164,6 +165,8 @@ impl<const D: usize> Coupling<D> {
         let coefs = a.coefs();
         let row = |(jj, orow): (usize, [&mut [f64]; D])| {
             let inner_j = jj > 0 && jj + 1 < ny;
+            // ii indexes the row of every coordinate, the operator and the coupling
+            #[allow(clippy::needless_range_loop)]
             for ii in 0..nx {
                 let p = ii + nx * jj;
                 let st = &coefs[p];

@@ -7,7 +7,7 @@
 //! # Why
 //! On stretched O- and C-grids the Picard steps contract by only ~0.4 each, even with exact
 //! linear solves: the metric coefficients P, Q, R that Picard freezes carry the slow modes.
-//! Newton differentiates them too ([`crate::elliptic::jacobian2d`]: J = A − G, G couples the
+//! Newton differentiates them too (`elliptic::jacobian2d`: J = A − G, G couples the
 //! coordinates); with the Picard operator A as preconditioner the Krylov method only has to
 //! resolve A⁻¹G, whose few large eigenvalues are exactly the modes Picard is slow on.
 //!
@@ -15,7 +15,7 @@
 //! 1. Evaluate A, b and r = b − A x at the iterate (reused from the last line search).
 //! 2. Set up (or update) the linear solver for A, as a Picard step would.
 //! 3. Linearise (the coupling G) and solve J δ = r by FGMRES to the forcing term
-//!    ([`forcing`]: Eisenstat–Walker), rows scaled by A's diagonal, so that the Krylov
+//!    (`forcing`: Eisenstat–Walker), rows scaled by A's diagonal, so that the Krylov
 //!    residual weighs every node as the reported residual does.
 //! 4. Line search: accept x + λδ for λ = 1, then ½, if the residual of [24] (max over nodes,
 //!    relative, as reported) falls by the Armijo factor 1 − 10⁻⁴ λ; the evaluation at the
@@ -30,7 +30,7 @@
 //! rejected Newton step, Picard steps follow until the updates are ten times smaller.
 //!
 //! # Stop
-//! As for Picard ([`crate::elliptic::picard::error_estimate`]): the last update, or once the
+//! As for Picard (`picard::error_estimate`): the last update, or once the
 //! updates contract, the a-posteriori bound of a contraction with the larger of the last two
 //! ratios of successive updates plus the step's linear error. Newton's updates shrink faster
 //! than any fixed ratio, so the estimate is pessimistic, i.e. honest.
