@@ -3,14 +3,16 @@
 //! parallel, orthogonality steps, quality), with the Picard steps and work units of every
 //! block.
 //!
-//! `cargo run --release --example bench_multiblock -- [--quick] [--repeat N]`
+//! `cargo run --release --example bench_multiblock -- [--quick] [--repeat N]
+//! [--variants picard,newton,anderson5] [--only LABEL-PREFIX] [--history]`
 //!
 //! Cases: `naca0012_ogrid` as shipped (4 × 65 × 49) and with every edge at 257 nodes
 //! (4 × 257²); `rae2822_cgrid` as shipped and with every node count doubled (minus one);
 //! `nlr7301_flap` and `artificial_boundary` as shipped. `--quick` drops the refined cases.
-//! Each case runs `--repeat` times (default 3); the best wall-clock time is printed, with
-//! plain Picard steps (`anderson = 0`, the default) and with Anderson acceleration of depth 5
-//! side by side.
+//! Each case runs `--repeat` times (default 3); the best wall-clock time is printed for each
+//! solver variant side by side: `picard` (plain Picard steps, the default), `newton`
+//! (`nonlinear = "newton"`), `andersonN` (Anderson acceleration of depth N); default
+//! `picard,newton`. `--history` prints every step of every block.
 
 use ellipgrid::case::LoadedCase;
 use ellipgrid::elliptic::picard::Nonlinear;
