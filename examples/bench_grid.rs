@@ -2,20 +2,24 @@
 //! with the sparse direct solver.
 //!
 //! `cargo run --release --example bench_grid -- [--quick] [--sizes 257,513] [--only curved|bl-1e-5]
-//! [--no-plain] [--history]`
+//! [--no-plain] [--no-linear] [--newton] [--history]`
 //!
 //! `--write DIR` writes every computed grid (or solution) as raw f64 for `scripts/same-grids.sh`.
 //!
 //! Cases: the curved quadrilateral of `examples/curved.toml` and the boundary-layer block of
 //! `examples/boundary_layer.toml` with wall spacing 1e-5 (`bl-1e-5`; and `bl-ar1e4`, with
 //! wall-tangential spacings of 0.15 at both ends: aspect ratios ≥ 1e4), at 257², 513², 1025²
-//! nodes (`--quick`: 129², 257²). For each:
+//! nodes (`--quick`: 129², 257²), and the wavy C-block of `examples/folding_start.toml`
+//! (`folded`: deep concave valleys, the transfinite start folds) at the same sizes. For each:
 //! - `linear`: the Picard system at the final grid (both coordinates' right-hand sides, x
 //!   from zero): cycles of the default multigrid (F(1,1)) to reduce the residual by 1e-10,
 //!   mean factor per cycle, setup (first setup, allocation included) and solve seconds, ns
 //!   per unknown per cycle;
 //! - `mg+nested`: the whole generation (tolerance 1e-10) by nested iteration with multigrid:
 //!   Picard steps per level (coarsest first), seconds, work units (`ellipgrid::elliptic::nested`);
+//! - `newton` (with `--newton`): the same by Newton–Krylov steps
+//!   ([`ellipgrid::elliptic::newton`]) instead of Picard steps, and the largest difference
+//!   from the `mg+nested` grid relative to the diameter;
 //! - `mg plain`: plain Picard with multigrid from the transfinite grid;
 //! - `direct`: plain Picard with the sparse LU (N ≤ 513), the time ratio to `mg+nested`, and
 //!   the largest difference between the two grids relative to the diameter.
@@ -26,7 +30,7 @@ use ellipgrid::algebraic::control2d::control_for;
 use ellipgrid::algebraic::ControlKind;
 use ellipgrid::case::LoadedCase;
 use ellipgrid::elliptic::nested::{grid_block_nested, NestedInfo};
-use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::elliptic::picard::{Nonlinear, PicardParams};
 use ellipgrid::elliptic::poisson2d::assemble;
 use ellipgrid::grid::boundary::Boundary2;
 use ellipgrid::grid::Grid2;
@@ -135,6 +139,11 @@ fn whole(
 ) -> (Grid2<2>, NestedInfo) {
     let params = PicardParams {
         nested: Some(nested),
+        nonlinear: if what == "newton" {
+            Nonlinear::Newton
+        } else {
+            Nonlinear::Picard
+        },
         ..PicardParams::default()
     };
     let (r, info) =
@@ -147,7 +156,7 @@ fn whole(
         .map(|s| s.linear_iterations.iter().max().copied().unwrap_or(0))
         .sum();
     println!(
-        "{label:<8} {:>5}²  {what:<9} Picard {} (levels {}) conv {}  cycles {cycles:>2}  {:7.3}s  {:6.1} WU (1 WU = {:.2} ms)  res {:.1e}",
+        "{label:<8} {:>5}²  {what:<9} steps {} (levels {}) conv {}  cycles {cycles:>2}  {:7.3}s  {:6.1} WU (1 WU = {:.2} ms)  res {:.1e}",
         b.ni(),
         r.picard.steps,
         steps.join("/"),
@@ -193,7 +202,9 @@ fn main() {
         rayon::current_num_threads()
     );
     type Case = (&'static str, &'static str, fn(String) -> String);
-    let cases: [Case; 3] = [
+    let newton = std::env::args().any(|a| a == "--newton");
+    let lin = !std::env::args().any(|a| a == "--no-linear");
+    let cases: [Case; 4] = [
         ("curved", "curved.toml", |s| s),
         ("bl-1e-5", "boundary_layer.toml", |s| {
             s.replace("first = 1e-4", "first = 1e-5")
@@ -204,6 +215,7 @@ fn main() {
             s.replace("first = 1e-4", "first = 1e-5")
                 .replace("first = 0.01, last = 0.02", "first = 0.15, last = 0.15")
         }),
+        ("folded", "folding_start.toml", |s| s),
     ];
     for (label, file, edit) in cases {
         if only.as_deref().is_some_and(|o| o != label) {
@@ -219,7 +231,17 @@ fn main() {
                     max_aspect(&g)
                 );
             }
-            linear(label, &b, &g);
+            if newton {
+                let mut mg = MultigridSafe::new(MgParams::default());
+                let (gn, _) = whole(label, "newton", &b, &mut mg, true);
+                println!(
+                    "{label:<8} {n:>5}²  newton vs mg+nested: max diff {:.1e}",
+                    max_diff(&g, &gn)
+                );
+            }
+            if lin {
+                linear(label, &b, &g);
+            }
             if !plain {
                 continue;
             }

@@ -3,16 +3,19 @@
 //! parallel, orthogonality steps, quality), with the Picard steps and work units of every
 //! block.
 //!
-//! `cargo run --release --example bench_multiblock -- [--quick] [--repeat N]`
+//! `cargo run --release --example bench_multiblock -- [--quick] [--repeat N]
+//! [--variants picard,newton,anderson5] [--only LABEL-PREFIX] [--history]`
 //!
 //! Cases: `naca0012_ogrid` as shipped (4 × 65 × 49) and with every edge at 257 nodes
 //! (4 × 257²); `rae2822_cgrid` as shipped and with every node count doubled (minus one);
 //! `nlr7301_flap` and `artificial_boundary` as shipped. `--quick` drops the refined cases.
-//! Each case runs `--repeat` times (default 3); the best wall-clock time is printed, with
-//! plain Picard steps (`anderson = 0`, the default) and with Anderson acceleration of depth 5
-//! side by side.
+//! Each case runs `--repeat` times (default 3); the best wall-clock time is printed for each
+//! solver variant side by side: `picard` (plain Picard steps, the default), `newton`
+//! (`nonlinear = "newton"`), `andersonN` (Anderson acceleration of depth N); default
+//! `picard,newton`. `--history` prints every step of every block.
 
 use ellipgrid::case::LoadedCase;
+use ellipgrid::elliptic::picard::Nonlinear;
 use ellipgrid::job;
 use std::path::Path;
 use std::time::Instant;
@@ -30,15 +33,48 @@ fn renumber(text: &str, f: impl Fn(usize) -> usize) -> String {
         .join("\n")
 }
 
+/// The solver variants of `--variants` (default `picard,newton`): `picard`, `newton`, or
+/// `andersonN` (Picard with Anderson acceleration of depth N).
+fn variants() -> Vec<String> {
+    let args: Vec<String> = std::env::args().collect();
+    args.iter()
+        .position(|a| a == "--variants")
+        .and_then(|k| args.get(k + 1))
+        .map_or("picard,newton", |v| v.as_str())
+        .split(',')
+        .map(str::to_string)
+        .collect()
+}
+
 fn run(label: &str, file: &str, edit: impl Fn(&str) -> String, repeat: usize) {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(only) = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|k| args.get(k + 1))
+    {
+        if !label.starts_with(only.as_str()) {
+            return;
+        }
+    }
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples")
         .join(file);
     let text = edit(&std::fs::read_to_string(&path).expect("read case"));
-    for depth in [0, 5] {
+    for v in variants() {
         let mut case = LoadedCase::parse(&text, &path).expect("parse case");
-        case.case.solver.picard.anderson = depth;
-        time(&format!("{label} (anderson {depth})"), &case, repeat);
+        let p = &mut case.case.solver.picard;
+        match v.as_str() {
+            "picard" => p.nonlinear = Nonlinear::Picard,
+            "newton" => p.nonlinear = Nonlinear::Newton,
+            a => {
+                p.anderson = a
+                    .strip_prefix("anderson")
+                    .and_then(|d| d.parse().ok())
+                    .expect("--variants: picard, newton or andersonN")
+            }
+        }
+        time(&format!("{label} ({v})"), &case, repeat);
     }
 }
 
@@ -74,6 +110,17 @@ fn time(label: &str, case: &LoadedCase, repeat: usize) {
             b.seconds,
             b.quality.folded_cells
         );
+        if std::env::args().any(|a| a == "--history") {
+            for st in b.picard.iter().flat_map(|p| &p.history) {
+                println!(
+                    "        update {:.2e}  residual {:.2e}  cycles {:?}  linear res {:.1e}",
+                    st.update,
+                    st.residual,
+                    st.linear_iterations,
+                    st.linear_residual.iter().cloned().fold(0.0, f64::max)
+                );
+            }
+        }
     }
 }
 

@@ -10,7 +10,7 @@ mod verify;
 
 use clap::{Parser, Subcommand};
 use ellipgrid::case::LoadedCase;
-use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::elliptic::picard::{Nonlinear, PicardParams};
 use ellipgrid::io::plot3d;
 use ellipgrid::io::Block;
 use ellipgrid::job;
@@ -74,6 +74,9 @@ enum Command {
         /// Picard tolerance (max node update / block diameter).
         #[arg(long, default_value_t = 1e-10)]
         tolerance: f64,
+        /// Nonlinear iteration: "picard" or "newton" (Newton–Krylov; README "Nonlinear solve").
+        #[arg(long, default_value = "picard", value_parser = ["picard", "newton"])]
+        nonlinear: String,
         /// Make the grid orthogonal at these edges (Section 2.4), e.g. `--orthogonal E1,E3`.
         #[arg(long, value_delimiter = ',', value_name = "E,..")]
         orthogonal: Vec<String>,
@@ -142,6 +145,7 @@ pub fn main() -> ExitCode {
             blocks,
             linear,
             tolerance,
+            nonlinear,
             orthogonal,
             method,
             report,
@@ -155,6 +159,11 @@ pub fn main() -> ExitCode {
                 linear,
                 picard: PicardParams {
                     tolerance,
+                    nonlinear: if nonlinear == "newton" {
+                        Nonlinear::Newton
+                    } else {
+                        Nonlinear::Picard
+                    },
                     ..PicardParams::default()
                 },
                 orthogonal,

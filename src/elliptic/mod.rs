@@ -6,6 +6,7 @@
 //! |---|---|---|
 //! | one inexact Picard iteration (2D and 3D) | [41–44] | [`picard`] |
 //! | Anderson acceleration of the Picard steps | [43, 44] | [`anderson`] |
+//! | Newton–Krylov steps (Jacobian of [24], GMRES preconditioned by the Picard solver) | [24] | [`newton`] |
 //! | the 2D / minimal-surface system, nine-point assembly | [24] [43, 44] | [`poisson2d`] |
 //! | the volume system, 19-point assembly | [86]–[88] | [`poisson3d`] |
 //! | nested iteration, work units | — | [`nested`], [`nested3d`] |
@@ -17,8 +18,10 @@
 pub mod anderson;
 pub mod domain;
 pub mod harmonic;
+pub(crate) mod jacobian2d;
 pub mod nested;
 pub mod nested3d;
+pub mod newton;
 pub mod orthogonal;
 pub mod orthogonal3d;
 pub mod picard;

@@ -43,6 +43,36 @@ pub struct PicardParams {
     /// the fine Picard steps but not wall-clock time (the stop can no longer use the
     /// contraction estimate, and the mixing costs ~6 % of a step).
     pub anderson: usize,
+    /// The nonlinear iteration: Picard steps [43, 44] (default) or Newton–Krylov steps
+    /// ([`crate::elliptic::newton`]; 2D blocks and minimal surfaces).
+    pub nonlinear: Nonlinear,
+}
+
+/// The nonlinear iteration of a grid system (`[solver] nonlinear`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Nonlinear {
+    /// Picard iteration [43, 44]: the metric coefficients frozen at each step.
+    #[default]
+    Picard,
+    /// Newton's method on [24], GMRES preconditioned by the Picard operator's solver
+    /// ([`crate::elliptic::newton`]).
+    Newton,
+}
+
+impl<'de> serde::Deserialize<'de> for Nonlinear {
+    /// "picard" or "newton"; any other value is refused naming the key (the table is
+    /// flattened into `[solver]`, whose error would otherwise only list the variants).
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let s = String::deserialize(d)?;
+        match s.as_str() {
+            "picard" => Ok(Nonlinear::Picard),
+            "newton" => Ok(Nonlinear::Newton),
+            _ => Err(serde::de::Error::custom(format!(
+                "nonlinear = \"{s}\": must be \"picard\" or \"newton\""
+            ))),
+        }
+    }
 }
 
 impl Default for PicardParams {
@@ -55,6 +85,7 @@ impl Default for PicardParams {
             linear_forcing: 0.1,
             nested: None,
             anderson: 0,
+            nonlinear: Nonlinear::Picard,
         }
     }
 }
@@ -89,6 +120,12 @@ impl PicardParams {
         count("max_steps", self.max_steps, 1, MAX_STEPS)?;
         count("linear_max_iter", self.linear_max_iter, 1, MAX_STEPS)?;
         count("anderson", self.anderson, 0, MAX_ANDERSON)?;
+        if self.anderson > 0 && self.nonlinear == Nonlinear::Newton {
+            return Err(format!(
+                "anderson = {}: accelerates Picard steps only; use anderson = 0 with nonlinear = \"newton\"",
+                self.anderson
+            ));
+        }
         let f = self.linear_forcing;
         if !(f.is_finite() && (0.0..1.0).contains(&f)) {
             return Err(format!(
@@ -161,7 +198,7 @@ pub type BlockResult<const D: usize> = Solved<crate::grid::Grid2<D>>;
 pub type VolumeResult = Solved<crate::grid::Grid3>;
 
 /// What the system's part of one Picard step returns to [`iterate`].
-struct StepWork {
+pub(crate) struct StepWork {
     /// Residual of the grid equations at the iterate the step started from.
     pub residual: f64,
     /// The linear solves of the step, one per coordinate.
@@ -208,7 +245,7 @@ impl<'s, A> Linear<'s, A> {
 }
 
 /// Sets `solver` up for the operator `a`, or only updates it if `small`.
-fn prepare<A>(
+pub(crate) fn prepare<A>(
     solver: &mut dyn LinearSolver<A>,
     a: &A,
     small: bool,
@@ -318,7 +355,7 @@ pub(crate) fn run<S: System>(
 /// last update was below [`SMALL_CHANGE`]), solve the corrections to `ctl` and apply them.
 /// `progress` sees every step. Returns the history and whether the iteration converged; a
 /// failed linear solve or a non-finite update is an error naming `place`.
-fn iterate(
+pub(crate) fn iterate(
     params: &PicardParams,
     relative_stop: f64,
     place: &str,
@@ -368,7 +405,7 @@ fn iterate(
 
 /// The report of an iteration by [`iterate`] with the linear solver `solver`, ending at
 /// residual `final_residual` (work units and coarse levels are filled in by nested iteration).
-fn info(
+pub(crate) fn info(
     solver: &str,
     params: &PicardParams,
     history: Vec<PicardStep>,
@@ -418,7 +455,7 @@ pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
 /// solves' results and the largest |δ|. The correction form keeps the cycles' round-off
 /// relative to δ instead of x: near convergence the residual of x_k is itself at round-off
 /// level, and a solve for x would stagnate.
-fn solve_corrections<A>(
+pub(crate) fn solve_corrections<A>(
     solver: &dyn LinearSolver<A>,
     u: &mut [Vec<f64>],
     r: &[Vec<f64>],

@@ -13,11 +13,13 @@
 //! same for every solver and for the volume system.
 
 use crate::algebraic::control2d::Control2;
-use crate::elliptic::picard::{self, PicardInfo, PicardParams};
+use crate::elliptic::jacobian2d::Coupling;
+use crate::elliptic::newton::{self, NewtonSystem};
+use crate::elliptic::picard::{self, Nonlinear, PicardInfo, PicardParams};
 use crate::grid::boundary::Boundary2;
 use crate::grid::Grid2;
 use crate::solve::stencil9::Stencil9;
-use crate::solve::LinearSolver;
+use crate::solve::{LinearSolver, SolveError};
 use crate::Result;
 use rayon::prelude::*;
 
@@ -227,8 +229,18 @@ pub(crate) fn solve_timed<const D: usize>(
         r: std::array::from_fn(|_| vec![0.0; nx * ny]),
         u: std::array::from_fn(|_| vec![0.0; nx * ny]),
         diam,
+        coupling: None,
+        own: Vec::new(),
+        scratch: None,
+        blocks: false,
     };
-    picard::run(&mut sys, params, relative_stop, place, &mut |_, _| {})
+    match params.nonlinear {
+        Nonlinear::Picard => picard::run(&mut sys, params, relative_stop, place, &mut |_, _| {}),
+        Nonlinear::Newton => {
+            sys.coupling = Some(Coupling::new(nx, ny));
+            newton::run(&mut sys, params, relative_stop, place, &mut |_, _| {})
+        }
+    }
 }
 
 /// The Picard system of one 2D block: iterate, frozen operator, right-hand sides, and the
@@ -242,6 +254,15 @@ struct System2<'a, const D: usize> {
     r: [Vec<f64>; D],
     u: [Vec<f64>; D],
     diam: f64,
+    /// The Jacobian's coupling (Newton's method only).
+    coupling: Option<Coupling<D>>,
+    /// Newton's preconditioner: the solvers of coordinates 1.. (`solver` serves coordinate
+    /// 0), each set up for its diagonal block A − G_cc of the Jacobian, and the operator
+    /// being set up; empty while the preconditioner is `solver` on A for every coordinate.
+    own: Vec<Box<dyn LinearSolver>>,
+    scratch: Option<Stencil9>,
+    /// True while the solvers hold the blocks A − G_cc (block Gauss–Seidel).
+    blocks: bool,
 }
 
 impl<const D: usize> picard::System for System2<'_, D> {
@@ -270,6 +291,112 @@ impl<const D: usize> picard::System for System2<'_, D> {
 
     fn diameter(&self) -> f64 {
         self.diam
+    }
+}
+
+impl<const D: usize> NewtonSystem for System2<'_, D> {
+    fn coordinates(&self) -> usize {
+        D
+    }
+
+    fn nodes(&self) -> usize {
+        self.a.len()
+    }
+
+    fn linearize(&mut self) {
+        let cp = self
+            .coupling
+            .get_or_insert_with(|| Coupling::new(self.a.nx(), self.a.ny()));
+        cp.linearize(self.x, self.ctrl);
+    }
+
+    fn apply_jacobian(&self, v: &[f64], out: &mut [f64]) {
+        self.coupling
+            .as_ref()
+            .expect("linearize before apply_jacobian")
+            .apply(&self.a, v, out);
+    }
+
+    fn diagonal(&self, out: &mut [f64]) {
+        use crate::solve::stencil9::dir::C;
+        out.par_iter_mut()
+            .zip(self.a.coefs().par_iter())
+            .for_each(|(o, st)| *o = st[C]);
+    }
+
+    fn setup_preconditioner(&mut self) -> std::result::Result<(), SolveError> {
+        while self.own.len() + 1 < D {
+            match self.solver.companion() {
+                Some(s) => self.own.push(s),
+                None => break,
+            }
+        }
+        if self.own.len() + 1 < D {
+            self.blocks = false;
+            return self.solver.setup(&self.a);
+        }
+        let cp = self
+            .coupling
+            .as_ref()
+            .expect("linearize before the preconditioner");
+        let scratch = self
+            .scratch
+            .get_or_insert_with(|| Stencil9::zeros(self.a.nx(), self.a.ny()));
+        for c in 0..D {
+            cp.own_operator(&self.a, c, scratch);
+            let solver: &mut dyn LinearSolver = if c == 0 {
+                &mut *self.solver
+            } else {
+                &mut *self.own[c - 1]
+            };
+            solver.setup(scratch)?;
+        }
+        self.blocks = true;
+        Ok(())
+    }
+
+    fn precondition(&self, v: &mut [f64], out: &mut [f64]) -> std::result::Result<(), SolveError> {
+        let n = self.a.len();
+        if !self.blocks {
+            return out
+                .par_chunks_mut(n)
+                .zip(v.par_chunks(n))
+                .map(|(oc, vc)| self.solver.precondition(vc, oc))
+                .collect();
+        }
+        // block Gauss–Seidel over the coordinates: (A − G_cc) z_c = v_c + Σ_{d<c} G_cd z_d
+        let cp = self
+            .coupling
+            .as_ref()
+            .expect("linearize before the preconditioner");
+        for c in 0..D {
+            let (done, rest) = out.split_at_mut(c * n);
+            let w = &mut v[c * n..(c + 1) * n];
+            for (d, zd) in done.chunks(n).enumerate() {
+                cp.add_coupling(c, d, zd, w);
+            }
+            let solver: &dyn LinearSolver = if c == 0 {
+                &*self.solver
+            } else {
+                &*self.own[c - 1]
+            };
+            solver.precondition(w, &mut rest[..n])?;
+        }
+        Ok(())
+    }
+
+    fn picard_ready(&mut self) {
+        self.blocks = false;
+    }
+
+    fn apply_scaled(&mut self, delta: &[f64], f: f64, largest: f64) -> f64 {
+        let n = self.a.len();
+        for (c, uc) in self.u.iter_mut().enumerate() {
+            uc.par_iter_mut()
+                .zip(&delta[c * n..(c + 1) * n])
+                .for_each(|(u, d)| *u = f * d);
+        }
+        picard::System::apply(self, largest)
     }
 }
 

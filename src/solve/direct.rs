@@ -186,9 +186,13 @@ impl<S: Assemble> SparseDirect<S> {
     }
 }
 
-impl<S: Assemble + Send + Sync> LinearSolver<S> for SparseDirect<S> {
+impl<S: Assemble + Send + Sync + 'static> LinearSolver<S> for SparseDirect<S> {
     fn setup(&mut self, a: &S) -> Result<(), SolveError> {
         self.factor(a)
+    }
+
+    fn companion(&self) -> Option<Box<dyn LinearSolver<S>>> {
+        Some(Box::new(Self::new()))
     }
 
     fn solve(

@@ -29,7 +29,8 @@ pub(crate) fn in_order<T: Send + std::iter::Sum<T>>(
     values.collect::<Vec<T>>().into_iter().sum()
 }
 
-fn update(out: &mut [f64], f: impl Fn(usize, &mut f64) + Sync + Send) {
+/// `f(i, &mut out[i])` for every element, in parallel chunks when large.
+pub(crate) fn update(out: &mut [f64], f: impl Fn(usize, &mut f64) + Sync + Send) {
     if use_par(out.len()) {
         out.par_chunks_mut(8192).enumerate().for_each(|(c, ch)| {
             for (t, v) in ch.iter_mut().enumerate() {

@@ -2,6 +2,7 @@
 //! solver and the black-box multigrid are interchangeable.
 
 pub mod direct;
+pub mod gmres;
 pub mod ilu;
 pub mod krylov;
 pub mod multigrid;
@@ -126,6 +127,21 @@ pub trait LinearSolver<A = Stencil9>: Send + Sync {
     /// for this `a`. Default: a full `setup`.
     fn update(&mut self, a: &A) -> Result<(), SolveError> {
         self.setup(a)
+    }
+
+    /// `x ≈ A⁻¹ b` as a preconditioner for the operator of the last `setup` or `update`: a
+    /// fixed linear map, cheap rather than exact (multigrid: one cycle from zero). Default:
+    /// a solve from zero to the default [`SolveControl`] (the direct solver: exact).
+    fn precondition(&self, b: &[f64], x: &mut [f64]) -> Result<(), SolveError> {
+        x.fill(0.0);
+        self.solve(b, x, &SolveControl::default()).map(|_| ())
+    }
+
+    /// A new solver of the same kind and parameters, not set up, for a second operator of
+    /// the same size (Newton's per-coordinate preconditioners, [`crate::elliptic::newton`]);
+    /// `None` (the default) if this solver cannot make one.
+    fn companion(&self) -> Option<Box<dyn LinearSolver<A>>> {
+        None
     }
 
     /// A short name for reports ("direct-lu", "multigrid").

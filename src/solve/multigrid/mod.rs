@@ -423,6 +423,27 @@ impl LinearSolver for Multigrid {
         Multigrid::update(self, a)
     }
 
+    fn companion(&self) -> Option<Box<dyn LinearSolver>> {
+        Some(Box::new(Multigrid::new(self.params.clone())))
+    }
+
+    /// One cycle from zero.
+    fn precondition(&self, b: &[f64], x: &mut [f64]) -> Result<(), SolveError> {
+        let h = self.hierarchy()?;
+        let l0 = &h.levels[0];
+        let (pd, n) = (pad(l0.nx), l0.n());
+        assert_eq!(b.len(), n, "multigrid: right-hand side length");
+        assert_eq!(x.len(), n, "multigrid: solution length");
+        let mut ws = self.take_workspace(h);
+        let v = &mut ws.lv[0];
+        v.b[pd..pd + n].copy_from_slice(b);
+        v.x.fill(0.0);
+        h.cycle(0, h.params.cycle, &mut ws.lv, &mut ws.band);
+        x.copy_from_slice(&ws.lv[0].x[pd..pd + n]);
+        self.pool.put(ws);
+        Ok(())
+    }
+
     fn name(&self) -> &'static str {
         "multigrid"
     }

@@ -70,6 +70,15 @@ impl LinearSolver for MultigridSafe {
         Ok(info)
     }
 
+    fn companion(&self) -> Option<Box<dyn LinearSolver>> {
+        Some(Box::new(MultigridSafe::new(self.mg.params().clone())))
+    }
+
+    /// One cycle of the multigrid (no fallback: a preconditioner need not converge).
+    fn precondition(&self, b: &[f64], x: &mut [f64]) -> Result<(), SolveError> {
+        LinearSolver::precondition(&self.mg, b, x)
+    }
+
     fn name(&self) -> &'static str {
         "multigrid"
     }
