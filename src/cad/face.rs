@@ -109,11 +109,12 @@ fn trimmed(
         Ok(l) => &l[0],
         Err(e) => return Err(Error::input(place, e.clone())),
     };
-    // The (u, v) parametrization on the final grid's resolution first; where its discrete
-    // Winslow grid folds (sharp reentrant corners of the trim) or the final grid folds, again
-    // on a (u, v) grid 2 times finer, then with corners only at vertices turning by more than
-    // 20° (points inside edges otherwise). Faces that grid at once are not changed. (A 4 times
-    // finer try as well made the corpus's slowest files several times slower.)
+    // Corners by the plain rule and the (u, v) parametrization on the final grid's resolution
+    // first; where its discrete Winslow grid folds or the final grid folds, again with corners
+    // only at convex vertices (never reentrant ones), then also on a (u, v) grid 2 times
+    // finer, then with corners only at vertices turning by more than 20° (points inside edges
+    // otherwise). Faces that grid at once are not changed. (A 4 times finer try as well made
+    // the corpus's slowest files several times slower.)
     // A refined try that fails otherwise reports the first try's fold; a folded grid is
     // preferred to a folded (u, v) grid (it can still be written with --allow-folded).
     let mut best: Option<Result<FaceGrid>> = None;
@@ -144,9 +145,11 @@ fn trimmed(
     best.expect("TRIES is not empty")
 }
 
-/// The tries of [`trimmed`] in turn: (least turning of a vertex to be a corner (radians),
-/// refinement of the (u, v) grid).
-const TRIES: [(f64, usize); 3] = [(1e-3, 1), (1e-3, 2), (0.35, 1)];
+/// The tries of [`trimmed`] in turn: (least turning of a convex vertex to be a corner
+/// (radians), or `None` for the plain rule of [`FaceLoop::corners`]; refinement of the (u, v)
+/// grid).
+const TRIES: [(Option<f64>, usize); 4] =
+    [(None, 1), (Some(1e-3), 1), (Some(1e-3), 2), (Some(0.35), 1)];
 
 /// One try of [`trimmed`] with corners at vertices turning by more than `min_turn` and the
 /// (u, v) grid `refine` times finer than the final grid.
@@ -157,7 +160,7 @@ fn attempt(
     edges: &[super::LoopEdge],
     (ni, nj): (usize, usize),
     dist: [&DistributionSpec; 2],
-    (min_turn, refine): (f64, usize),
+    (min_turn, refine): (Option<f64>, usize),
     solver: &mut dyn LinearSolver,
     place: &str,
 ) -> Result<FaceGrid> {
@@ -234,7 +237,7 @@ fn boundary(
     orientation: bool,
     (ni, nj): (usize, usize),
     dist: [&DistributionSpec; 2],
-    (min_turn, refine): (f64, usize),
+    (min_turn, refine): (Option<f64>, usize),
     place: &str,
 ) -> Result<FaceBoundary> {
     let err = |m: String| Error::input(place, m);

@@ -337,20 +337,24 @@ impl<'a> FaceLoop<'a> {
     /// with fewer than four such vertices, those plus midpoints (by arclength) of the longest
     /// stretches between them. Reentrant vertices are never corners: the corner cell of a
     /// grid there would fold. Returns the corners and their turning angles (degrees).
-    pub fn corners(&self, min_turn: f64) -> ([LoopPoint; 4], [f64; 4]) {
+    ///
+    /// `min_turn = None` is the plain rule: the four vertices turning most whichever way, the
+    /// middles of the longest stretches.
+    pub fn corners(&self, min_turn: Option<f64>) -> ([LoopPoint; 4], [f64; 4]) {
         let n = self.len();
         let ccw = self.signed_area(self.scale) > 0.0;
         let mut by_angle: Vec<(usize, f64)> = (0..n)
             .map(|k| {
                 let t = self.turning(k);
-                (k, if self.reentrant(k, ccw) { -t } else { t })
+                let out = min_turn.is_some() && self.reentrant(k, ccw);
+                (k, if out { -t } else { t })
             })
             .collect();
         by_angle.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         let mut ks: Vec<usize> = by_angle
             .iter()
             .take(4)
-            .filter(|p| p.1 > min_turn)
+            .filter(|p| min_turn.is_none_or(|m| p.1 > m))
             .map(|p| p.0)
             .collect();
         if ks.is_empty() {
@@ -373,7 +377,7 @@ impl<'a> FaceLoop<'a> {
             let mid = (0..=10)
                 .map(|d| 0.5 + if d % 2 == 0 { 0.025 } else { -0.025 } * d as f64)
                 .map(at)
-                .find(|p| !self.bends_out(*p, ccw))
+                .find(|p| min_turn.is_none() || !self.bends_out(*p, ccw))
                 .unwrap_or_else(|| at(0.5));
             pts.insert(k + 1, mid);
         }
