@@ -7,8 +7,12 @@
 //! files, their sources (repository, commit, path, SHA-256) and how to fetch them.
 //!
 //! ```text
-//! cargo run --release --example bench_step -- /work/corpus/step [--n 33] [--timeout 60]
+//! cargo run --release --example bench_step -- /work/corpus/step [--n 33] [--timeout 60] \
+//!     [--only NAME] [--show REASON]
 //! ```
+//!
+//! `--only NAME` runs the files whose name contains NAME; `--show REASON` prints the file and
+//! face number of every face whose outcome contains REASON (e.g. `--show "(u, v)"`).
 
 use ellipgrid::cad::{grid_face, read_step_faces, Route};
 use ellipgrid::case::DistributionSpec;
@@ -48,7 +52,9 @@ fn class(m: &str) -> String {
     out.chars().take(110).collect()
 }
 
-fn grid_file(path: PathBuf, n: usize) -> Result<Vec<(&'static str, Outcome)>, String> {
+type Faces = Vec<(usize, &'static str, Outcome)>;
+
+fn grid_file(path: PathBuf, n: usize) -> Result<Faces, String> {
     let faces = read_step_faces(&path).map_err(|e| e.to_string())?;
     let d = DistributionSpec::Uniform {};
     Ok(faces
@@ -71,7 +77,7 @@ fn grid_file(path: PathBuf, n: usize) -> Result<Vec<(&'static str, Outcome)>, St
                     }
                 }
             };
-            (f.surface_type, o)
+            (f.index, f.surface_type, o)
         })
         .collect())
 }
@@ -87,12 +93,23 @@ fn main() {
             .unwrap_or(default)
     };
     let (n, timeout) = (opt("--n", 33) as usize, opt("--timeout", 60));
+    let text = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|k| args.get(k + 1))
+            .cloned()
+    };
+    let (only, show) = (text("--only"), text("--show"));
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("corpus directory")
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
             p.extension()
                 .is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))
+        })
+        .filter(|p| {
+            only.as_ref()
+                .is_none_or(|o| p.to_string_lossy().contains(o.as_str()))
         })
         .collect();
     files.sort();
@@ -132,7 +149,7 @@ fn main() {
             }
             Ok(Ok(f)) => f,
         };
-        let count = |f: fn(&Outcome) -> bool| faces.iter().filter(|x| f(&x.1)).count();
+        let count = |f: fn(&Outcome) -> bool| faces.iter().filter(|x| f(&x.2)).count();
         let ok = count(|o| matches!(o, Outcome::Ok));
         let folded = count(|o| matches!(o, Outcome::Folded));
         let refused = count(|o| matches!(o, Outcome::Refused(_)));
@@ -146,7 +163,7 @@ fn main() {
         let s = by_system.entry(system).or_default();
         s[0] += faces.len();
         s[1] += ok;
-        for (ty, o) in &faces {
+        for (index, ty, o) in &faces {
             let t = by_type.entry(ty).or_default();
             t[0] += 1;
             if matches!(o, Outcome::Ok) {
@@ -158,6 +175,12 @@ fn main() {
                 Outcome::Refused(m) => format!("refused: {}", class(m)),
                 Outcome::Failed(m) => format!("failed: {}", class(m)),
             };
+            if show
+                .as_ref()
+                .is_some_and(|w| format!("{o:?}").contains(w.as_str()))
+            {
+                println!("    {name} face {index}: {o:?}");
+            }
             *reasons.entry(key).or_default() += 1;
         }
     }

@@ -187,6 +187,61 @@ fn five_edges_group_into_four_sides_at_the_sharpest_corners() {
 }
 
 #[test]
+fn a_reentrant_vertex_is_never_a_corner() {
+    // The notch's vertex (2, 0.5) turns 102.7° outwards, more than the 90° corners at the
+    // bottom: a corner there folds its corner cell. The corners are the four convex vertices.
+    let g = grid("plane_notch.step", 1, 17);
+    let grid = &g.result.grid;
+    assert!(unfolded(grid));
+    let (ni, nj) = (grid.ni(), grid.nj());
+    let mut corners: Vec<[i64; 2]> = [0, ni - 1, ni * nj - 1, ni * (nj - 1)]
+        .iter()
+        .map(|&p| {
+            let x = node(grid, p);
+            [(x[0] * 1e6).round() as i64, (x[1] * 1e6).round() as i64]
+        })
+        .collect();
+    corners.sort();
+    let want = [
+        [0, 0],
+        [0, 3_000_000],
+        [4_000_000, 0],
+        [4_000_000, 3_000_000],
+    ];
+    assert_eq!(corners, want);
+    let mut angles = g.corner_angles.clone();
+    angles.sort_by(f64::total_cmp);
+    let turn = (-2.5 / 2f64.hypot(2.5)).acos().to_degrees();
+    let expect = [90.0, 90.0, turn, turn];
+    assert!(
+        angles.iter().zip(expect).all(|(a, b)| (a - b).abs() < 1e-6),
+        "{angles:?} vs {expect:?}"
+    );
+    // The notch's two edges are equally long: its vertex is the middle node of the top side,
+    // and the planar grid's area is the polygon's, 12 − 5.
+    assert!(g.result.grid.coord(2).iter().all(|z| z.abs() < 1e-12));
+    let a = area(grid);
+    assert!((a - 7.0).abs() < 1e-12, "{a}");
+    // The CLI grids it (exit 0) and writes the grid.
+    let dir = tempfile::tempdir().unwrap();
+    let step = file("plane_notch.step");
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step",
+            "grid",
+            step.to_str().unwrap(),
+            "--face",
+            "1",
+            "-o",
+            "n.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(dir.path().join("n.x").exists());
+}
+
+#[test]
 fn a_concave_trim_is_gridded_without_folds() {
     let exact = 2.98074213;
     converges("plane_nonconvex.step", exact, |p| p[2].abs());

@@ -298,29 +298,87 @@ impl<'a> FaceLoop<'a> {
         }
     }
 
-    /// Four corners in loop order: the four vertices where the loop turns most, or, with
-    /// fewer than four vertices, the vertices plus midpoints (by arclength) of the longest
-    /// stretches between them. Returns the corners and their turning angles (degrees).
-    pub fn corners(&self) -> ([LoopPoint; 4], [f64; 4]) {
+    /// Whether the loop turns outwards (a reentrant, concave vertex) at the start of edge
+    /// `k`: the turn in (u, v) against the loop's sense of rotation, from the chords of the
+    /// (u, v) samples next to the vertex (`ccw`: the loop runs counterclockwise in (u, v)).
+    fn reentrant(&self, k: usize, ccw: bool) -> bool {
         let n = self.len();
-        let mut pts: Vec<LoopPoint> = if n >= 4 {
-            let mut by_angle: Vec<(usize, f64)> = (0..n).map(|k| (k, self.turning(k))).collect();
-            by_angle.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-            let mut ks: Vec<usize> = by_angle[..4].iter().map(|p| p.0).collect();
-            ks.sort_unstable();
-            ks.into_iter()
-                .map(|edge| LoopPoint { edge, sigma: 0.0 })
-                .collect()
+        let (a, b) = (&self.edges[(k + n - 1) % n].uv, &self.edges[k].uv);
+        let s = self.scale;
+        let da = [0, 1].map(|c| (a[NS][c] - a[NS - 1][c]) * s[c]);
+        let db = [0, 1].map(|c| (b[1][c] - b[0][c]) * s[c]);
+        let cross = da[0] * db[1] - da[1] * db[0];
+        if ccw {
+            cross < 0.0
         } else {
-            (0..n).map(|edge| LoopPoint { edge, sigma: 0.0 }).collect()
-        };
+            cross > 0.0
+        }
+    }
+
+    /// Whether the loop bends outwards (is concave) at a point inside an edge, from the
+    /// (u, v) samples next to it.
+    fn bends_out(&self, p: LoopPoint, ccw: bool) -> bool {
+        let uv = &self.edges[p.edge].uv;
+        let i = ((p.sigma * NS as f64).round() as usize).clamp(1, NS - 1);
+        let s = self.scale;
+        let da = [0, 1].map(|c| (uv[i][c] - uv[i - 1][c]) * s[c]);
+        let db = [0, 1].map(|c| (uv[i + 1][c] - uv[i][c]) * s[c]);
+        let cross = da[0] * db[1] - da[1] * db[0];
+        let tiny = 1e-9 * (da[0].hypot(da[1]) * db[0].hypot(db[1]));
+        if ccw {
+            cross < -tiny
+        } else {
+            cross > tiny
+        }
+    }
+
+    /// Four corners in loop order: the four convex vertices where the loop turns most (by more
+    /// than `min_turn` radians: weaker turns are no better than a point inside an edge), or,
+    /// with fewer than four such vertices, those plus midpoints (by arclength) of the longest
+    /// stretches between them. Reentrant vertices are never corners: the corner cell of a
+    /// grid there would fold. Returns the corners and their turning angles (degrees).
+    ///
+    /// `min_turn = None` is the plain rule: the four vertices turning most whichever way, the
+    /// middles of the longest stretches.
+    pub fn corners(&self, min_turn: Option<f64>) -> ([LoopPoint; 4], [f64; 4]) {
+        let n = self.len();
+        let ccw = self.signed_area(self.scale) > 0.0;
+        let mut by_angle: Vec<(usize, f64)> = (0..n)
+            .map(|k| {
+                let t = self.turning(k);
+                let out = min_turn.is_some() && self.reentrant(k, ccw);
+                (k, if out { -t } else { t })
+            })
+            .collect();
+        by_angle.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+        let mut ks: Vec<usize> = by_angle
+            .iter()
+            .take(4)
+            .filter(|p| min_turn.is_none_or(|m| p.1 > m))
+            .map(|p| p.0)
+            .collect();
+        if ks.is_empty() {
+            ks.push(by_angle[0].0);
+        }
+        ks.sort_unstable();
+        let mut pts: Vec<LoopPoint> = ks
+            .into_iter()
+            .map(|edge| LoopPoint { edge, sigma: 0.0 })
+            .collect();
         while pts.len() < 4 {
-            // Split the longest stretch between consecutive points at its middle.
+            // Split the longest stretch between consecutive points near its middle, at a point
+            // where the loop does not bend outwards (a corner on a concave curve folds its
+            // corner cell): the nearest such point to the middle within its middle half.
             let m = pts.len();
             let (k, len) = (0..m)
                 .map(|k| (k, self.chain_length(pts[k], pts[(k + 1) % m])))
                 .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
-            let mid = self.advance(pts[k], 0.5 * len);
+            let at = |t: f64| self.advance(pts[k], t * len);
+            let mid = (0..=10)
+                .map(|d| 0.5 + if d % 2 == 0 { 0.025 } else { -0.025 } * d as f64)
+                .map(at)
+                .find(|p| min_turn.is_none() || !self.bends_out(*p, ccw))
+                .unwrap_or_else(|| at(0.5));
             pts.insert(k + 1, mid);
         }
         // Rotate so that the first corner is the earliest in loop order.

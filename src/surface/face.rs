@@ -177,8 +177,53 @@ pub fn grid_face_composite(
     solver: &mut dyn LinearSolver,
     place: &str,
 ) -> Result<FaceResult> {
+    grid_face_composite_refined(
+        surface,
+        points,
+        uv,
+        (uv, 1),
+        scale,
+        orthogonal,
+        solver,
+        place,
+    )
+}
+
+/// [`grid_face_composite`] with the face's (u, v) parametrization made on a grid `refine`
+/// times finer than the final one: `fine` holds the sides at `refine` (nᵢ − 1) + 1 and
+/// `refine` (nⱼ − 1) + 1 nodes, node k of `uv` being node `refine` k of `fine`. A finer (u, v)
+/// grid resolves sharp reentrant corners of a trim where the discrete Winslow grid at the
+/// final resolution folds; the final grid still depends on it only by the discretization error.
+///
+/// # Errors
+/// [`Error::Input`] if `fine` does not hold `uv` at every `refine`-th node; those of
+/// [`grid_face_composite`].
+#[allow(clippy::too_many_arguments)]
+pub fn grid_face_composite_refined(
+    surface: &dyn Surface,
+    points: &[Vec<Vec3>; 4],
+    uv: &[Vec<[f64; 2]>; 4],
+    (fine, refine): (&[Vec<[f64; 2]>; 4], usize),
+    scale: [f64; 2],
+    orthogonal: [bool; 4],
+    solver: &mut dyn LinearSolver,
+    place: &str,
+) -> Result<FaceResult> {
     let (ni, nj) = (points[2].len(), points[0].len());
-    let (w, picard) = parametrization(uv, scale, solver, place)?;
+    let nested = refine >= 1
+        && Edge::ALL.into_iter().all(|e| {
+            let (c, f) = (&uv[e.index()], &fine[e.index()]);
+            !c.is_empty()
+                && f.len() == refine * (c.len() - 1) + 1
+                && c.iter().enumerate().all(|(k, q)| f[refine * k] == *q)
+        });
+    if !nested {
+        return Err(Error::input(
+            place,
+            format!("the fine (u, v) sides do not hold the final ones at every {refine}-th node"),
+        ));
+    }
+    let (w, picard) = parametrization(fine, scale, solver, place)?;
     let composite = Composite { s: surface, w: &w };
     let side = |n: usize| (0..n).map(move |k| k as f64 / (n - 1) as f64);
     let xi: [Vec<[f64; 2]>; 4] = [
