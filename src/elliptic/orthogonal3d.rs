@@ -206,47 +206,43 @@ pub fn grid_volume_corrected(
         }
         // The pass's solve; if it fails (a remap from a folded or strongly oblique grid can
         // make the operator singular), the parameter update is halved up to DAMPINGS times.
-        let mut solved = None;
-        let x_before = x.clone();
-        for damping in 0..=DAMPINGS {
-            if damping > 0 {
-                for (new, old) in [
-                    (&mut pg.s, &prev.s),
-                    (&mut pg.t, &prev.t),
-                    (&mut pg.u, &prev.u),
-                ] {
-                    for (a, b) in new.iter_mut().zip(old) {
-                        *a = b + 0.5 * (*a - b);
-                    }
-                }
-                x.clone_from(&x_before);
-            }
-            let ctrl = Control3::from_algebraic(&pg);
-            let step = if ctrl.all_finite() {
-                poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)
-            } else {
-                Err(Error::input(
+        let mut attempt = |pg: &ParamGrid3, x: &mut Grid3| {
+            let ctrl = Control3::from_algebraic(pg);
+            if !ctrl.all_finite() {
+                let faces: Vec<&str> = ortho
+                    .iter()
+                    .chain(c.wall.iter())
+                    .map(|&f| FACE_NAMES[f])
+                    .collect();
+                return Err(Error::input(
                     place,
                     format!(
                         "the correction at {} made the control functions singular",
-                        ortho
-                            .iter()
-                            .chain(c.wall.iter())
-                            .map(|&f| FACE_NAMES[f])
-                            .collect::<Vec<_>>()
-                            .join(", ")
+                        faces.join(", ")
                     ),
-                ))
-            };
-            match step {
-                Ok(step) => {
-                    solved = Some(Ok(step));
-                    break;
-                }
-                Err(e) => solved = Some(Err(e)),
+                ));
             }
+            poisson3d::solve(x, &ctrl, solver, &loose, place, progress)
+        };
+        let x_before = x.clone();
+        let mut solved = attempt(&pg, &mut x);
+        for _ in 0..DAMPINGS {
+            if solved.is_ok() {
+                break;
+            }
+            for (new, old) in [
+                (&mut pg.s, &prev.s),
+                (&mut pg.t, &prev.t),
+                (&mut pg.u, &prev.u),
+            ] {
+                for (a, b) in new.iter_mut().zip(old) {
+                    *a = b + 0.5 * (*a - b);
+                }
+            }
+            x.clone_from(&x_before);
+            solved = attempt(&pg, &mut x);
         }
-        match solved.expect("at least one try") {
+        match solved {
             Ok(step) => append(&mut info, step),
             Err(e) => match best.take() {
                 // A failed orthogonal pass: finish from the best fold-free grid.
