@@ -1,6 +1,7 @@
 //! The 18 control functions of the volume grid system, eqs. [83, 84] (METHOD.md §6).
 
-use crate::algebraic::bilinear3d::{bilinear, det3, EdgeFunctions3, ParamGrid3};
+use crate::algebraic::bilinear3d::{bilinear, det3, ParamGrid3};
+use crate::algebraic::flat_edge::edge_functions;
 use crate::algebraic::{ControlKind, Controls};
 use crate::grid::faces::Faces;
 use crate::Result;
@@ -79,7 +80,7 @@ impl Control3 {
 pub fn control_for(faces: &Faces, kind: ControlKind, place: &str) -> Result<Control3> {
     Ok(match kind {
         ControlKind::Algebraic => {
-            Control3::from_algebraic(&bilinear(&EdgeFunctions3::arclength(faces), place)?)
+            Control3::from_algebraic(&bilinear(&edge_functions(faces), place)?)
         }
         ControlKind::Laplace => Control3::zeros(faces.dims()),
     })

@@ -8,12 +8,14 @@
 //! | Hermite-blended transformation (orthogonality) | [47–49] | [`blend`] |
 //! | control functions P11, P12, P22 | [19, 20] | [`control2d`] |
 //! | the 18 control functions of a volume | [83, 84] | [`control3d`] |
+//! | 180° block edges: edge functions warped like √ of the distance | — | [`flat_edge`] |
 //! | Coons patches of volume faces from their edges | — | [`coons`] |
 pub mod bilinear3d;
 pub mod blend;
 pub mod control2d;
 pub mod control3d;
 pub mod coons;
+pub mod flat_edge;
 pub mod scramble;
 pub mod transfinite3d;
 pub mod transform;

@@ -49,6 +49,7 @@
 
 use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3};
 use crate::algebraic::control3d::Control3;
+use crate::algebraic::flat_edge::edge_functions;
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::nested::{
@@ -136,7 +137,7 @@ pub fn grid_volume_nested(
         vec![faces.dims()]
     };
     let ef = match kind {
-        ControlKind::Algebraic => Some(EdgeFunctions3::arclength(faces)),
+        ControlKind::Algebraic => Some(edge_functions(faces)),
         ControlKind::Laplace => None,
     };
     // The finest level's control functions first: a degenerate bilinear transformation is

@@ -16,8 +16,9 @@
 //! times. A pass that folds the grid is not kept: the result is then the fold-free
 //! pass with the smallest largest angle at the chosen faces.
 
-use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
+use crate::algebraic::bilinear3d::{bilinear, ParamGrid3};
 use crate::algebraic::control3d::Control3;
+use crate::algebraic::flat_edge::edge_functions;
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep, VolumeResult};
@@ -68,7 +69,7 @@ pub fn grid_volume_corrected(
         .map(|w| WallTargets::new(faces, w, place))
         .transpose()?;
     let ortho: Vec<usize> = (0..6).filter(|&f| c.orthogonal[f]).collect();
-    let mut pg = bilinear(&EdgeFunctions3::arclength(faces), place)?;
+    let mut pg = bilinear(&edge_functions(faces), place)?;
     // Intermediate solves only need the near-face positions to well under the tolerances.
     let loose = PicardParams {
         tolerance: params.tolerance.max(LOOSE_TOLERANCE),

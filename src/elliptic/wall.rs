@@ -152,6 +152,8 @@ impl WallTargets {
             }
             p.iter().map(|q| dist(*q, p[0])).collect()
         });
+        // Arclength parameters (not the flat-edge warp of the transformation): the targets
+        // interpolate the edges' profiles along the wall.
         let pg = bilinear(&EdgeFunctions3::arclength(faces), place)?;
         let [na, nb] = face_dims(w, dims);
         let mut weights = Vec::with_capacity(na * nb);
