@@ -9,11 +9,13 @@
 //! | control functions P11, P12, P22 | [19, 20] | [`control2d`] |
 //! | the 18 control functions of a volume | [83, 84] | [`control3d`] |
 //! | Coons patches of volume faces from their edges | — | [`coons`] |
+//! | periodic (s, t), start grid and control functions of an O-grid with a floating cut | [5, 6] [19, 20] | [`periodic`] |
 pub mod bilinear3d;
 pub mod blend;
 pub mod control2d;
 pub mod control3d;
 pub mod coons;
+pub mod periodic;
 pub mod scramble;
 pub mod transfinite3d;
 pub mod transform;
