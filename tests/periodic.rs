@@ -115,35 +115,24 @@ fn an_annulus_with_a_floating_cut_has_straight_rays_at_uniform_angles() {
 }
 
 #[test]
-fn the_cut_s_given_nodes_do_not_matter() {
+fn the_cut_s_distribution_acts_through_the_control_functions_only() {
+    // A clustered cut: its nodes are unknowns, its distribution sets t along every ξ-line
+    // (P22 = −t_ηη / t_η), the same on every ray, so the grid is still polar with the seam
+    // like any other ray, and clustered at the inner circle.
+    let clustered_cut = "interface = \"floating\"\ndistribution = { type = \"geometric\", first = 0.01 }";
     let uniform = generate(&annulus(33, 13, "interface = \"floating\""));
-    let clustered = generate(&annulus(
-        33,
-        13,
-        "interface = \"floating\"\ndistribution = { type = \"geometric\", first = 0.01 }",
-    ));
+    let clustered = generate(&annulus(33, 13, clustered_cut));
     let (a, b) = (planar(&uniform.blocks[0].1), planar(&clustered.blocks[0].1));
     assert_polar(b);
-    for c in 0..2 {
-        for (u, v) in a.coord(c).iter().zip(b.coord(c)) {
-            assert!((u - v).abs() < RAY_TOL, "{u} vs {v}");
-        }
-    }
-    // Through the library from a different start: the fixed-cut transfinite grid with the
-    // clustered cut (its nodes are unknowns now), against the periodic start.
-    let case = LoadedCase::parse(
-        &annulus(
-            33,
-            13,
-            "interface = \"floating\"\ndistribution = { type = \"geometric\", first = 0.01 }",
-        ),
-        Path::new("p.toml"),
-    )
-    .unwrap();
+    let first = |g: &Grid2<2>| g.point(9, 1)[0].hypot(g.point(9, 1)[1]) - 1.0;
+    assert!(first(b) < 0.5 * first(a), "{} vs {}", first(b), first(a));
+    // The same grid from two different starts: the fixed-cut transfinite grid (the cut's
+    // given nodes in column 0) and the periodic start (straight rays).
+    let case = LoadedCase::parse(&annulus(33, 13, clustered_cut), Path::new("p.toml")).unwrap();
     let topo = case.topology.as_ref().unwrap();
     let g = &topo.groups("p").unwrap()[0];
     assert!(g.periodic);
-    let b = case
+    let bnd = case
         .planar_from(case.group_points(g).unwrap(), "p")
         .unwrap();
     // both to 1e-13, against the run's default 1e-10 (of the diameter 10)
@@ -151,11 +140,16 @@ fn the_cut_s_given_nodes_do_not_matter() {
         tolerance: 1e-13,
         ..PicardParams::default()
     };
-    let from_tf = periodic::grid_block(&b, Some(transfinite(&b)), [false; 4], ControlKind::Algebraic, &p, "p").unwrap();
-    let from_ps = periodic::grid_block(&b, Some(periodic_start(&b)), [false; 4], ControlKind::Algebraic, &p, "p").unwrap();
+    let alg = ControlKind::Algebraic;
+    let none = [false; 4];
+    let from_tf = periodic::grid_block(&bnd, Some(transfinite(&bnd)), none, alg, &p, "p").unwrap();
+    let from_ps =
+        periodic::grid_block(&bnd, Some(periodic_start(&bnd)), none, alg, &p, "p").unwrap();
     for c in 0..2 {
-        for ((u, v), w) in from_tf.grid.coord(c).iter().zip(from_ps.grid.coord(c)).zip(a.coord(c)) {
-            assert!((u - v).abs() < RAY_TOL && (v - w).abs() < 1e-9, "{u} {v} {w}");
+        let (u, v, w) = (from_tf.grid.coord(c), from_ps.grid.coord(c), b.coord(c));
+        for k in 0..u.len() {
+            assert!((u[k] - v[k]).abs() < RAY_TOL, "{} vs {}", u[k], v[k]);
+            assert!((v[k] - w[k]).abs() < 1e-8, "{} vs {}", v[k], w[k]);
         }
     }
 }
@@ -171,4 +165,121 @@ fn a_fixed_cut_keeps_its_nodes() {
     let g = planar(&r.blocks[0].1);
     let first = g.point(0, 1)[0] - g.point(0, 0)[0];
     assert!((first - 0.01).abs() < 1e-9, "{first}");
+}
+
+/// The shipped one-block NACA0012 O-grid.
+fn oneblock_text() -> String {
+    std::fs::read_to_string(root().join("examples/naca0012_oneblock.toml")).unwrap()
+}
+
+/// The one-block example's vertices and edges with 62 cells on every far-field quarter and
+/// 58 on the aft airfoil edges (+ 4 on the base halves): every quarter of the ring below has
+/// 62 cells along i.
+fn ring_edges() -> String {
+    let one = oneblock_text();
+    let mut t = one[..one.find("[[block]]").unwrap()].to_string();
+    t = t.replace(
+        "n = 65\ncurve = { type = \"arc\"",
+        "n = 63\ncurve = { type = \"arc\"",
+    );
+    for to in ["to = \"te_up\"\nn = 63", "to = \"te_lo\"\nn = 63"] {
+        assert!(t.contains(to), "{to}");
+        t = t.replace(to, &to.replace("63", "59"));
+    }
+    t
+}
+
+/// The same airfoil and far field as a ring of four blocks (the four domains of
+/// `examples/naca0012_ogrid.toml`) whose four cuts all float.
+fn ring_text() -> String {
+    let mut t = ring_edges();
+    for (cut, from, far) in [
+        ("cut_le", "le", "far_le"),
+        ("cut_up", "up", "far_up"),
+        ("cut_lo", "lo", "far_lo"),
+    ] {
+        t.push_str(&format!(
+            "[[edge]]\nname = \"{cut}\"\nfrom = \"{from}\"\nto = \"{far}\"\nn = 49\n\
+             distribution = {{ type = \"vinokur\", first = 0.003, last = 1.5 }}\n\
+             interface = \"floating\"\n"
+        ));
+    }
+    for (name, e1, e2, e3, e4) in [
+        ("upper_fore", "cut_le", "cut_up", "\"upper_fore\"", "far_2"),
+        ("upper_aft", "cut_up", "cut_te", "[\"upper_aft\", \"base_up\"]", "far_1"),
+        ("lower_aft", "cut_te", "cut_lo", "[\"base_lo\", \"lower_aft\"]", "far_4"),
+        ("lower_fore", "cut_lo", "cut_le", "\"lower_fore\"", "far_3"),
+    ] {
+        t.push_str(&format!(
+            "[[block]]\nname = \"{name}\"\nE1 = \"{e1}\"\nE2 = \"{e2}\"\nE3 = {e3}\nE4 = \"{e4}\"\n"
+        ));
+    }
+    t
+}
+
+#[test]
+fn the_one_block_naca0012_o_grid_converges_fold_free() {
+    let r = generate(&oneblock_text());
+    let rep = &r.report.blocks[0];
+    let picard = rep.picard.as_ref().unwrap();
+    assert!(picard.converged, "{} steps", picard.steps);
+    assert_eq!(rep.quality.folded_cells, 0);
+    let g = planar(&r.blocks[0].1);
+    assert_eq!((g.ni(), g.nj()), (257, 49));
+    for j in 0..g.nj() {
+        assert_eq!(g.point(0, j), g.point(256, j), "seam row {j}");
+    }
+    // The wall is clustered through the control functions (the cut's first spacing 0.003,
+    // and the O-grid's own growth away from the wall): mid-chord, upper surface,
+    // i = 4 + 3 × 62; measured 5.2e-4.
+    let (w, p) = (g.point(190, 0), g.point(190, 1));
+    let first = (p[0] - w[0]).hypot(p[1] - w[1]);
+    eprintln!("first spacing at mid-chord {first}");
+    assert!((1e-4..3e-3).contains(&first), "first spacing {first}");
+    // The seam is an interface of the block with itself, and it is smooth.
+    let seam = r.report.interfaces.iter().find(|f| f.edge == "cut_te").unwrap();
+    assert!(seam.floating);
+    let sm = &seam.smoothness;
+    eprintln!("seam {sm:?}");
+    assert!(sm.kink_max_deg < 10.0 && sm.spacing_ratio_max < 1.3, "{sm:?}");
+}
+
+#[test]
+fn a_ring_of_four_floating_blocks_is_the_one_block_grid() {
+    let ring = generate(&ring_text());
+    let blocks: Vec<&Grid2<2>> = ring.blocks.iter().map(|(_, b)| planar(b)).collect();
+    for (rep, g) in ring.report.blocks.iter().zip(&blocks) {
+        assert!(rep.picard.as_ref().unwrap().converged, "{}", rep.name);
+        assert_eq!(rep.quality.folded_cells, 0, "{}", rep.name);
+        assert_eq!((g.ni(), g.nj()), (63, 49));
+        assert_eq!(rep.group.as_deref(), Some("upper_fore+upper_aft+lower_aft+lower_fore"));
+    }
+    // Interface nodes bit-identical: each block's E2 is the next block's E1, round the ring.
+    for k in 0..4 {
+        let (a, b) = (blocks[k], blocks[(k + 1) % 4]);
+        for j in 0..49 {
+            assert_eq!(a.point(62, j), b.point(0, j), "blocks {k}, {}: row {j}", (k + 1) % 4);
+        }
+    }
+    // The same grid as the one block (its seam at the trailing edge, the ring's at the
+    // leading edge): the periodic system does not know where its seam is (the control
+    // functions are invariant under the affine change of s between the two), so the grids
+    // agree to the Picard tolerance (1e-10 of the diameter 20).
+    let one_text = oneblock_text();
+    let one = generate(&(ring_edges() + &one_text[one_text.find("[[block]]").unwrap()..]));
+    let g1 = planar(&one.blocks[0].1);
+    // column c of the ring's block k is column (le + 62 k + c) of the one block, whose E3
+    // reaches the leading edge after base_lo, lower_aft and lower_fore
+    let le = 4 + 58 + 62;
+    let mut worst = 0.0f64;
+    for (k, g) in blocks.iter().enumerate() {
+        for j in 0..49 {
+            for c in 0..63 {
+                let i1 = (le + 62 * k + c) % 248;
+                let (p, q) = (g.point(c, j), g1.point(i1, j));
+                worst = worst.max((p[0] - q[0]).hypot(p[1] - q[1]));
+            }
+        }
+    }
+    assert!(worst < 1e-8, "ring and one block differ by {worst:e}");
 }

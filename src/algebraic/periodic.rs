@@ -1,12 +1,19 @@
 //! The algebraic transformation, start grid and control functions [19, 20] of a block that is
 //! periodic in ξ (an O-grid whose cut E1 = E2 floats, [`crate::elliptic::periodic`]).
 //!
-//! In a periodic direction there are no ξ = const boundaries, so nothing prescribes t along a
-//! cut: the straight-line transformation [5, 6] keeps only its η boundaries,
-//! s = s_E3(ξ) (1 − t) + s_E4(ξ) t with t = η (uniform), and the control functions [19] follow
-//! from this (s, t) by central differences that wrap around the seam. s jumps by 1 across the
-//! seam (it is an angle-like coordinate): the node west of column 0 is column N − 1 with
-//! s − 1. The cut's own nodes (their distribution) are not used anywhere.
+//! In a periodic direction there are no ξ = const boundaries: the cut is not a boundary, its
+//! nodes are unknowns. What the straight-line transformation [5, 6] still takes from it is
+//! its distribution: t_E1 = t_E2 = the normalized arclength of the cut's given nodes, the
+//! same function on both copies of the seam, so t = t_cut(η) on every ξ-line and
+//! s = s_E3(ξ) (1 − t) + s_E4(ξ) t. The control functions [19] follow from this (s, t) by
+//! central differences that wrap around the seam: s jumps by 1 across the seam (an
+//! angle-like coordinate), so the node west of column 0 is column N − 1 with s − 1. The
+//! cut's distribution thus sets the spacing away from E3 (a wall's first spacing, as on a
+//! fixed cut); where its nodes lie is not used.
+//!
+//! Why not t = η: without the cut's clustering nothing controls the spacing normal to E3,
+//! and about a NACA0012 with a sharp trailing edge the grid then folds at the trailing edge
+//! (cells 0.003 along the wall, 0.05 across it: Picard stalls and diverges, measured).
 
 use crate::algebraic::control2d::Control2;
 use crate::algebraic::transform::ParamGrid;
@@ -16,16 +23,17 @@ use crate::grid::boundary::Boundary2;
 use crate::grid::{Edge, Grid2};
 use rayon::prelude::*;
 
-/// The periodic straight-line (s, t) grid: s interpolated linearly in t between the
-/// normalized arclengths of E3 and E4, t = η = j / M.
+/// The periodic straight-line (s, t) grid: t = t_cut(η), the normalized arclength of the
+/// cut E1 (= E2), and s interpolated linearly in t between the normalized arclengths of E3
+/// and E4.
 pub fn periodic_param<const D: usize>(b: &Boundary2<D>) -> ParamGrid {
     let (ni, nj) = (b.ni(), b.nj());
     let s3 = normalized_arclength(b.edge(Edge::E3));
     let s4 = normalized_arclength(b.edge(Edge::E4));
+    let tc = normalized_arclength(b.edge(Edge::E1));
     let mut s = Vec::with_capacity(ni * nj);
     let mut t = Vec::with_capacity(ni * nj);
-    for j in 0..nj {
-        let tv = j as f64 / (nj - 1) as f64;
+    for (j, &tv) in tc.iter().enumerate() {
         for i in 0..ni {
             s.push(if j == 0 {
                 s3[i]
@@ -41,14 +49,15 @@ pub fn periodic_param<const D: usize>(b: &Boundary2<D>) -> ParamGrid {
 }
 
 /// The start grid of a periodic block: along every ξ = const line the straight segment from
-/// E3 to E4, nodes uniform in η (the transfinite grid between the two η boundaries). Column
-/// N is column 0 bit for bit.
+/// E3 to E4, nodes at the cut's normalized arclength t_cut (the transfinite grid between the
+/// two η boundaries). Column N is column 0 bit for bit.
 pub fn periodic_start<const D: usize>(b: &Boundary2<D>) -> Grid2<D> {
     let (ni, nj) = (b.ni(), b.nj());
     let (e3, e4) = (b.edge(Edge::E3), b.edge(Edge::E4));
+    let tc = normalized_arclength(b.edge(Edge::E1));
     let mut g = Grid2::<D>::from_fn(ni, nj, |i, j| {
         let i = if i + 1 == ni { 0 } else { i };
-        let v = j as f64 / (nj - 1) as f64;
+        let v = tc[j];
         std::array::from_fn(|c| {
             if j == 0 {
                 e3[i][c]
@@ -134,8 +143,8 @@ mod tests {
 
     #[test]
     fn uniform_circles_give_zero_control_and_a_polar_start() {
-        // Two concentric circles with uniform nodes: s = ξ, t = η, so every control function
-        // vanishes, also at the seam (where s jumps by 1).
+        // Two concentric circles with uniform nodes and a uniform cut: s = ξ, t = η, so every
+        // control function vanishes, also at the seam (where s jumps by 1).
         let (ni, nj) = (17, 6);
         let circle = |r: f64| -> Vec<[f64; 2]> {
             (0..ni)
@@ -146,7 +155,7 @@ mod tests {
                 .collect()
         };
         let cut: Vec<[f64; 2]> = (0..nj)
-            .map(|j| [1.0 + 2.0 * (j as f64 / (nj - 1) as f64).powi(2), 0.0])
+            .map(|j| [1.0 + 2.0 * j as f64 / (nj - 1) as f64, 0.0])
             .collect();
         let b = Boundary2::new([cut.clone(), cut, circle(1.0), circle(3.0)], "ring").unwrap();
         let c = periodic_control_for(&b, ControlKind::Algebraic);
