@@ -283,3 +283,52 @@ fn a_ring_of_four_floating_blocks_is_the_one_block_grid() {
     }
     assert!(worst < 1e-8, "ring and one block differ by {worst:e}");
 }
+
+#[test]
+fn the_shipped_example_runs_through_the_command_line() {
+    let d = tempfile::tempdir().unwrap();
+    let case = root().join("examples/naca0012_oneblock.toml");
+    let o = ellipgrid(
+        d.path(),
+        &["run", case.to_str().unwrap(), "-o", "one.x", "-o", "one.conn", "--report", "r.json", "-q"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
+    let b = &r["blocks"][0];
+    assert_eq!(b["quality"]["folded_cells"], 0);
+    assert_eq!(b["picard"]["converged"], true);
+    assert_eq!(b["picard"]["linear_solver"], "direct-lu");
+    // The written grid has its seam duplicated bit for bit, and the connectivity file lists
+    // the seam as the block's 1-to-1 interface with itself.
+    let f = ellipgrid::io::plot3d::read_plot3d(&d.path().join("one.x")).unwrap();
+    let g = planar(&f.blocks[0]);
+    for j in 0..g.nj() {
+        assert_eq!(g.point(0, j), g.point(g.ni() - 1, j));
+    }
+    let conn = std::fs::read_to_string(d.path().join("one.conn")).unwrap();
+    assert!(conn.starts_with("1\n"), "{conn}");
+}
+
+#[test]
+fn bad_periodic_blocks_are_refused_naming_the_block_and_edge() {
+    // E3 and E4 of the periodic block with different node counts.
+    let t = annulus(33, 13, "interface = \"floating\"");
+    let i = t.rfind("n = 33").unwrap();
+    let bad = format!("{}n = 29{}", &t[..i], &t[i + 6..]);
+    rejects(&bad, &["block 'ring'", "inner", "outer"]);
+    // Orthogonality and Newton steps are not available on a periodic block (yet).
+    let orth = t.replace("name = \"inner\"\n", "name = \"inner\"\northogonal = true\n");
+    rejects(&orth, &["block 'ring'", "E3", "periodic"]);
+    let newton = format!("[solver]\nnonlinear = \"newton\"\n{t}");
+    rejects(&newton, &["block 'ring'", "newton", "periodic"]);
+    // A floating cut on adjacent sides of one block cannot be periodic.
+    let adjacent = t.replace("E2 = \"cut\"\nE3 = \"inner\"", "E3 = \"cut\"\nE2 = \"inner\"");
+    assert_ne!(adjacent, t);
+    let o = {
+        let d = tempfile::tempdir().unwrap();
+        std::fs::write(d.path().join("bad.toml"), &adjacent).unwrap();
+        ellipgrid(d.path(), &["run", "bad.toml", "-o", "out.x"])
+    };
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+}
