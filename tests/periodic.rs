@@ -106,7 +106,9 @@ fn an_annulus_with_a_floating_cut_has_straight_rays_at_uniform_angles() {
     for j in 0..g.nj() {
         assert_eq!(g.point(0, j), g.point(g.ni() - 1, j));
     }
-    let radii: Vec<f64> = (0..g.nj()).map(|j| g.point(5, j)[0].hypot(g.point(5, j)[1])).collect();
+    let radii: Vec<f64> = (0..g.nj())
+        .map(|j| g.point(5, j)[0].hypot(g.point(5, j)[1]))
+        .collect();
     let steps: Vec<f64> = radii.windows(2).map(|w| w[1] - w[0]).collect();
     assert!(steps.windows(2).all(|w| w[1] > w[0]), "{radii:?}");
     // The connectivity lists the seam as a 1-to-1 interface of the block with itself.
@@ -119,7 +121,8 @@ fn the_cut_s_distribution_acts_through_the_control_functions_only() {
     // A clustered cut: its nodes are unknowns, its distribution sets t along every ξ-line
     // (P22 = −t_ηη / t_η), the same on every ray, so the grid is still polar with the seam
     // like any other ray, and clustered at the inner circle.
-    let clustered_cut = "interface = \"floating\"\ndistribution = { type = \"geometric\", first = 0.01 }";
+    let clustered_cut =
+        "interface = \"floating\"\ndistribution = { type = \"geometric\", first = 0.01 }";
     let uniform = generate(&annulus(33, 13, "interface = \"floating\""));
     let clustered = generate(&annulus(33, 13, clustered_cut));
     let (a, b) = (planar(&uniform.blocks[0].1), planar(&clustered.blocks[0].1));
@@ -206,8 +209,20 @@ fn ring_text() -> String {
     }
     for (name, e1, e2, e3, e4) in [
         ("upper_fore", "cut_le", "cut_up", "\"upper_fore\"", "far_2"),
-        ("upper_aft", "cut_up", "cut_te", "[\"upper_aft\", \"base_up\"]", "far_1"),
-        ("lower_aft", "cut_te", "cut_lo", "[\"base_lo\", \"lower_aft\"]", "far_4"),
+        (
+            "upper_aft",
+            "cut_up",
+            "cut_te",
+            "[\"upper_aft\", \"base_up\"]",
+            "far_1",
+        ),
+        (
+            "lower_aft",
+            "cut_te",
+            "cut_lo",
+            "[\"base_lo\", \"lower_aft\"]",
+            "far_4",
+        ),
         ("lower_fore", "cut_lo", "cut_le", "\"lower_fore\"", "far_3"),
     ] {
         t.push_str(&format!(
@@ -237,11 +252,19 @@ fn the_one_block_naca0012_o_grid_converges_fold_free() {
     eprintln!("first spacing at mid-chord {first}");
     assert!((1e-4..3e-3).contains(&first), "first spacing {first}");
     // The seam is an interface of the block with itself, and it is smooth.
-    let seam = r.report.interfaces.iter().find(|f| f.edge == "cut_te").unwrap();
+    let seam = r
+        .report
+        .interfaces
+        .iter()
+        .find(|f| f.edge == "cut_te")
+        .unwrap();
     assert!(seam.floating);
     let sm = &seam.smoothness;
     eprintln!("seam {sm:?}");
-    assert!(sm.kink_max_deg < 10.0 && sm.spacing_ratio_max < 1.3, "{sm:?}");
+    assert!(
+        sm.kink_max_deg < 10.0 && sm.spacing_ratio_max < 1.3,
+        "{sm:?}"
+    );
 }
 
 #[test]
@@ -252,13 +275,21 @@ fn a_ring_of_four_floating_blocks_is_the_one_block_grid() {
         assert!(rep.picard.as_ref().unwrap().converged, "{}", rep.name);
         assert_eq!(rep.quality.folded_cells, 0, "{}", rep.name);
         assert_eq!((g.ni(), g.nj()), (63, 49));
-        assert_eq!(rep.group.as_deref(), Some("upper_fore+upper_aft+lower_aft+lower_fore"));
+        assert_eq!(
+            rep.group.as_deref(),
+            Some("upper_fore+upper_aft+lower_aft+lower_fore")
+        );
     }
     // Interface nodes bit-identical: each block's E2 is the next block's E1, round the ring.
     for k in 0..4 {
         let (a, b) = (blocks[k], blocks[(k + 1) % 4]);
         for j in 0..49 {
-            assert_eq!(a.point(62, j), b.point(0, j), "blocks {k}, {}: row {j}", (k + 1) % 4);
+            assert_eq!(
+                a.point(62, j),
+                b.point(0, j),
+                "blocks {k}, {}: row {j}",
+                (k + 1) % 4
+            );
         }
     }
     // The same grid as the one block (its seam at the trailing edge, the ring's at the
@@ -290,7 +321,17 @@ fn the_shipped_example_runs_through_the_command_line() {
     let case = root().join("examples/naca0012_oneblock.toml");
     let o = ellipgrid(
         d.path(),
-        &["run", case.to_str().unwrap(), "-o", "one.x", "-o", "one.conn", "--report", "r.json", "-q"],
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "-o",
+            "one.x",
+            "-o",
+            "one.conn",
+            "--report",
+            "r.json",
+            "-q",
+        ],
     );
     assert!(o.status.success(), "{}", text(&o));
     let r: serde_json::Value =
@@ -318,12 +359,18 @@ fn bad_periodic_blocks_are_refused_naming_the_block_and_edge() {
     let bad = format!("{}n = 29{}", &t[..i], &t[i + 6..]);
     rejects(&bad, &["block 'ring'", "inner", "outer"]);
     // Orthogonality and Newton steps are not available on a periodic block (yet).
-    let orth = t.replace("name = \"inner\"\n", "name = \"inner\"\northogonal = true\n");
+    let orth = t.replace(
+        "name = \"inner\"\n",
+        "name = \"inner\"\northogonal = true\n",
+    );
     rejects(&orth, &["block 'ring'", "E3", "periodic"]);
     let newton = format!("[solver]\nnonlinear = \"newton\"\n{t}");
     rejects(&newton, &["block 'ring'", "newton", "periodic"]);
     // A floating cut on adjacent sides of one block cannot be periodic.
-    let adjacent = t.replace("E2 = \"cut\"\nE3 = \"inner\"", "E3 = \"cut\"\nE2 = \"inner\"");
+    let adjacent = t.replace(
+        "E2 = \"cut\"\nE3 = \"inner\"",
+        "E3 = \"cut\"\nE2 = \"inner\"",
+    );
     assert_ne!(adjacent, t);
     let o = {
         let d = tempfile::tempdir().unwrap();

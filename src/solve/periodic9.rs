@@ -136,7 +136,17 @@ mod tests {
         let (nx, ny) = (6, 4);
         let mut a = Periodic9::zeros(nx, ny);
         for (p, row) in a.coefs_mut().iter_mut().enumerate() {
-            *row = [-0.2, -1.0, -0.1, -1.1, 5.0 + 0.01 * p as f64, -0.9, -0.1, -1.0, -0.2];
+            *row = [
+                -0.2,
+                -1.0,
+                -0.1,
+                -1.1,
+                5.0 + 0.01 * p as f64,
+                -0.9,
+                -0.1,
+                -1.0,
+                -0.2,
+            ];
         }
         // The stencil of column 0 reaches column nx − 1 and back: a known answer through apply.
         let xe: Vec<f64> = (0..nx * ny).map(|p| (0.7 * p as f64).cos()).collect();

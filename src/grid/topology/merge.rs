@@ -264,7 +264,9 @@ impl Topology {
             let (next, s) = if j[0].0 == j[1].0 {
                 (block, j[0].1)
             } else {
-                *j.iter().find(|(b, _)| *b != block).expect("a join of two blocks")
+                *j.iter()
+                    .find(|(b, _)| *b != block)
+                    .expect("a join of two blocks")
             };
             if ring && next == first {
                 // The ring closes on the first block's E1: the same edge, the same way round

@@ -2,8 +2,8 @@
 //! scrambled start) and the surface blocks of each level on a warped parametrization.
 
 use super::{SurfaceGrid, VerifyOptions, WARP_STRENGTH};
-use crate::algebraic::scramble::{scrambled, scrambled3};
 use crate::algebraic::periodic::{close_seam, periodic_start};
+use crate::algebraic::scramble::{scrambled, scrambled3};
 use crate::algebraic::transfinite3d;
 use crate::algebraic::transform::transfinite;
 use crate::case::volume::{volume_place, wall_face};
@@ -215,9 +215,10 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 BlockKind::Minimal => {
                     let pts = lists.map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
                     let bnd = Boundary2::new(pts, &place)?;
-                    let (c, f, r) = start_2d(&bnd, g.orthogonal, g.periodic, case, seed, &place, |s| {
-                        quality_surface(s).folded_cells
-                    })?;
+                    let (c, f, r) =
+                        start_2d(&bnd, g.orthogonal, g.periodic, case, seed, &place, |s| {
+                            quality_surface(s).folded_cells
+                        })?;
                     let cut = |x: Grid2<3>| {
                         let pieces = g.pieces.iter();
                         pieces.map(|p| Block::Surface(p.cut(&x))).collect()
@@ -226,9 +227,10 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 }
                 _ => {
                     let bnd = case.planar_from(lists, &place)?;
-                    let (c, f, r) = start_2d(&bnd, g.orthogonal, g.periodic, case, seed, &place, |s| {
-                        quality2d(s).folded_cells
-                    })?;
+                    let (c, f, r) =
+                        start_2d(&bnd, g.orthogonal, g.periodic, case, seed, &place, |s| {
+                            quality2d(s).folded_cells
+                        })?;
                     let cut = |x: Grid2<2>| {
                         let pieces = g.pieces.iter();
                         pieces.map(|p| Block::Planar(p.cut(&x))).collect()
@@ -246,8 +248,9 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 BlockKind::Surface => continue,
                 BlockKind::Planar => {
                     let b = case.planar_boundary(k)?;
-                    let (c, f, r) =
-                        start_2d(&b, orth, false, case, seed, &place, |s| quality2d(s).folded_cells)?;
+                    let (c, f, r) = start_2d(&b, orth, false, case, seed, &place, |s| {
+                        quality2d(s).folded_cells
+                    })?;
                     (c, f, r.map(|(x, p)| (vec![Block::Planar(x)], p)))
                 }
                 BlockKind::Minimal => {
