@@ -379,3 +379,29 @@ fn bad_periodic_blocks_are_refused_naming_the_block_and_edge() {
     };
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
 }
+
+#[test]
+fn verify_finds_second_order_and_the_same_grid_from_a_folded_start() {
+    // An eccentric annulus (far field centred at x = 0.5) with a clustered floating cut:
+    // `ellipgrid verify` grids it at 3 levels (order of the family) and from a scrambled,
+    // folded start (the same grid to the limit); exit 0 = every property holds.
+    let t = annulus(
+        33,
+        13,
+        "interface = \"floating\"\ndistribution = { type = \"geometric\", first = 0.05 }",
+    )
+    .replace(
+        "center = [0, 0], radius = 5",
+        "center = [0.5, 0], radius = 5",
+    )
+    .replace("at = [5, 0]", "at = [5.5, 0]");
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("ann.toml"), t).unwrap();
+    let o = ellipgrid(d.path(), &["verify", "ann.toml", "--levels", "3"]);
+    let msg = text(&o);
+    assert!(o.status.success(), "{msg}");
+    assert!(
+        msg.contains("pass: 1 of 1 blocks pass") && msg.contains("folded"),
+        "{msg}"
+    );
+}
