@@ -405,3 +405,33 @@ fn verify_finds_second_order_and_the_same_grid_from_a_folded_start() {
         "{msg}"
     );
 }
+
+#[test]
+fn the_periodic_grid_is_bit_identical_on_one_and_two_threads() {
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(
+        d.path().join("ann.toml"),
+        annulus(
+            33,
+            13,
+            "interface = \"floating\"\ndistribution = { type = \"geometric\", first = 0.05 }",
+        ),
+    )
+    .unwrap();
+    let mut files = Vec::new();
+    for threads in ["1", "2"] {
+        let out = format!("a{threads}.x");
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_ellipgrid"))
+            .args(["run", "ann.toml", "-o", &out, "-q"])
+            .env("RAYON_NUM_THREADS", threads)
+            .current_dir(d.path())
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", text(&o));
+        files.push(std::fs::read(d.path().join(out)).unwrap());
+    }
+    assert!(
+        files[0] == files[1],
+        "the grids differ between 1 and 2 threads"
+    );
+}
