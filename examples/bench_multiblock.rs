@@ -8,7 +8,9 @@
 //!
 //! Cases: `naca0012_ogrid` as shipped (4 × 65 × 49) and with every edge at 257 nodes
 //! (4 × 257²); `rae2822_cgrid` as shipped and with every node count doubled (minus one);
-//! `nlr7301_flap` and `artificial_boundary` as shipped. `--quick` drops the refined cases.
+//! `nlr7301_flap` and `artificial_boundary` as shipped; `naca0012_oneblock` (one block with a
+//! periodic cut, 257 × 49; not with `newton`, which periodic blocks refuse). `--quick` drops
+//! the refined cases.
 //! Each case runs `--repeat` times (default 3); the best wall-clock time is printed for each
 //! solver variant side by side: `picard` (plain Picard steps, the default), `newton`
 //! (`nonlinear = "newton"`), `andersonN` (Anderson acceleration of depth N); default
@@ -47,6 +49,17 @@ fn variants() -> Vec<String> {
 }
 
 fn run(label: &str, file: &str, edit: impl Fn(&str) -> String, repeat: usize) {
+    run_variants(label, file, edit, repeat, variants());
+}
+
+/// [`run`] for the solver variants `vs`.
+fn run_variants(
+    label: &str,
+    file: &str,
+    edit: impl Fn(&str) -> String,
+    repeat: usize,
+    vs: Vec<String>,
+) {
     let args: Vec<String> = std::env::args().collect();
     if let Some(only) = args
         .iter()
@@ -61,7 +74,7 @@ fn run(label: &str, file: &str, edit: impl Fn(&str) -> String, repeat: usize) {
         .join("examples")
         .join(file);
     let text = edit(&std::fs::read_to_string(&path).expect("read case"));
-    for v in variants() {
+    for v in vs {
         let mut case = LoadedCase::parse(&text, &path).expect("parse case");
         let p = &mut case.case.solver.picard;
         match v.as_str() {
@@ -163,5 +176,13 @@ fn main() {
         "artificial_boundary.toml",
         same,
         repeat,
+    );
+    let no_newton = variants().into_iter().filter(|v| v != "newton").collect();
+    run_variants(
+        "naca0012_oneblock 257x49",
+        "naca0012_oneblock.toml",
+        same,
+        repeat,
+        no_newton,
     );
 }

@@ -10,12 +10,14 @@
 //! | the 18 control functions of a volume | [83, 84] | [`control3d`] |
 //! | 180° block edges: edge functions warped like √ of the distance | — | [`flat_edge`] |
 //! | Coons patches of volume faces from their edges | — | [`coons`] |
+//! | periodic (s, t), start grid and control functions of an O-grid with a floating cut | [5, 6] [19, 20] | [`periodic`] |
 pub mod bilinear3d;
 pub mod blend;
 pub mod control2d;
 pub mod control3d;
 pub mod coons;
 pub mod flat_edge;
+pub mod periodic;
 pub mod scramble;
 pub mod transfinite3d;
 pub mod transform;

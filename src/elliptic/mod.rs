@@ -8,6 +8,7 @@
 //! | Anderson acceleration of the Picard steps | [43, 44] | [`anderson`] |
 //! | Newton–Krylov steps (Jacobian of [24], GMRES preconditioned by the Picard solver) | [24] | [`newton`] |
 //! | the 2D / minimal-surface system, nine-point assembly | [24] [43, 44] | [`poisson2d`] |
+//! | the 2D system on a block periodic in ξ (an O-grid's floating cut) | [24] [43, 44] | [`periodic`] |
 //! | the volume system, 19-point assembly | [86]–[88] | [`poisson3d`] |
 //! | nested iteration, work units | — | [`nested`], [`nested3d`] |
 //! | one 2D block (Section 2, minimal surfaces Section 3) | [19–44] | [`domain`] |
@@ -24,6 +25,7 @@ pub mod nested3d;
 pub mod newton;
 pub mod orthogonal;
 pub mod orthogonal3d;
+pub mod periodic;
 pub mod picard;
 pub mod poisson2d;
 pub mod poisson3d;

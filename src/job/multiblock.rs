@@ -1,11 +1,12 @@
 //! Runs a multi-block case (`[[vertex]]`, `[[edge]]`, blocks naming edges): every group of
-//! blocks (a block, or a row joined by floating edges) is gridded as one block, the groups in
-//! parallel; shared edges give bit-identical nodes; the report gives the smoothness of every
-//! interface.
+//! blocks (a block, or a row joined by floating edges; a ring of them, or a block whose cut
+//! floats, as one block periodic in i) is gridded as one block, the groups in parallel;
+//! shared edges give bit-identical nodes; the report gives the smoothness of every interface.
 
 use super::{surface_distance, BlockReport};
 use crate::case::{BlockKind, LoadedCase};
 use crate::elliptic::orthogonal::grid_block_with;
+use crate::elliptic::periodic;
 use crate::elliptic::picard::PicardInfo;
 use crate::grid::boundary::Boundary2;
 use crate::grid::topology::{Group, Topology};
@@ -185,6 +186,13 @@ fn grid_group(
                 finish(p.block, Block::Surface(grid), Some(&r.picard), q, d, None);
             }
         }
+        BlockKind::Surface if g.periodic => {
+            return Err(Error::input(
+                place,
+                "a floating cut (periodic block) is for planar and minimal blocks; on a \
+                 surface block fix (do not float) one edge of the ring",
+            ));
+        }
         BlockKind::Surface => {
             // Section 4 on the blocks' surface, for any sides lying on it (surface::face); a
             // row joined by floating edges is one face on one surface.
@@ -252,5 +260,9 @@ fn solve_group<const D: usize>(
     place: &str,
 ) -> Result<crate::elliptic::picard::Solved<Grid2<D>>> {
     let ctrl = case.case.solver.control;
+    if g.periodic {
+        // the seam floats: periodic in i, its own solver (elliptic::periodic)
+        return periodic::grid_block(bnd, None, g.orthogonal, ctrl, params, place);
+    }
     grid_block_with(bnd, None, g.orthogonal, ctrl, solver, params, place)
 }

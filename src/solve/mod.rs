@@ -7,6 +7,7 @@ pub mod ilu;
 pub mod krylov;
 pub mod multigrid;
 pub mod multigrid3d;
+pub mod periodic9;
 pub mod select;
 pub mod stencil19;
 pub mod stencil9;

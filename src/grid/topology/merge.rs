@@ -2,8 +2,11 @@
 //! crosses those edges as smoothly as it runs inside a block, and split again afterwards.
 //!
 //! The blocks of a group must line up as one structured block: each floating edge is a whole
-//! side of both its blocks, and the floating edges join the blocks in a row (no ring, no
-//! branching). Each block is brought into the row's indexing by symmetries of its index square.
+//! side of both its blocks, and the floating edges join the blocks in a row (no branching).
+//! Each block is brought into the row's indexing by symmetries of its index square. A row
+//! whose floating edges close a ring (an O-grid of several blocks, or one block whose cut
+//! E1 = E2 floats) is one block periodic in i ([`Group::periodic`]): its E1 and E2 are the
+//! same edge, gridded by [`crate::elliptic::periodic`].
 
 use super::{EdgeUse, Topology};
 use crate::grid::{Edge, Grid2};
@@ -88,6 +91,9 @@ pub struct Group {
     pub pieces: Vec<GroupPiece>,
     pub sides: [Vec<EdgeUse>; 4],
     pub orthogonal: [bool; 4],
+    /// True if the floating edges close a ring: the group is periodic in i, its E1 and E2
+    /// are the same floating edge (the seam), and its grid's column N is column 0.
+    pub periodic: bool,
 }
 
 impl Topology {
@@ -101,12 +107,12 @@ impl Topology {
             let uses = self.uses_of(e);
             let (b1, s1, ..) = uses[0];
             let (b2, s2, ..) = uses[1];
-            if b1 == b2 {
+            if b1 == b2 && s1.index() / 2 != s2.index() / 2 {
                 return Err(Error::input(
                     at,
                     format!(
-                        "the edge is a cut of block '{}' (sides {s1} and {s2}); only an edge \
-                         between two blocks can float",
+                        "the edge is a cut of block '{}' on adjacent sides {s1} and {s2}; a \
+                         floating cut of one block joins opposite sides (E1 and E2, or E3 and E4)",
                         self.blocks[b1].name
                     ),
                 ));
@@ -170,13 +176,8 @@ impl Topology {
             .collect::<Vec<_>>()
             .join(", ");
         let at = format!("{place}: blocks {names}");
-        if mine.len() + 1 != comp.len() {
-            return Err(Error::input(
-                at,
-                "the floating edges between these blocks close a ring; a ring of blocks cannot \
-                 be gridded as one block: fix (do not float) one of its edges",
-            ));
-        }
+        // A tree of joins is a row (checked below); one join more closes a ring.
+        let ring = mine.len() == comp.len();
         let floating_sides = |b: usize| -> Vec<(usize, Edge)> {
             mine.iter()
                 .flat_map(|(e, j)| j.iter().filter(|(x, _)| *x == b).map(|(_, s)| (*e, *s)))
@@ -199,10 +200,14 @@ impl Topology {
                 ));
             }
         }
-        let first = *comp
-            .iter()
-            .find(|&&b| floating_sides(b).len() <= 1)
-            .expect("a row has an end");
+        let first = if ring {
+            comp[0]
+        } else {
+            *comp
+                .iter()
+                .find(|&&b| floating_sides(b).len() <= 1)
+                .expect("a row has an end")
+        };
         let to_e2 = |s: Edge| match s {
             Edge::E1 => vec![Op::FlipI],
             Edge::E2 => vec![],
@@ -222,9 +227,14 @@ impl Topology {
                     (op.sides(&s), op.flags(f))
                 })
         };
-        let mut ops = floating_sides(first)
-            .first()
-            .map_or(vec![], |(_, s)| to_e2(*s));
+        // The first block keeps its own indexing where it can: of a ring's two floating
+        // sides, the one at E2 (or E4) leads on.
+        let lead = floating_sides(first);
+        let lead = lead
+            .iter()
+            .find(|(_, s)| matches!(s, Edge::E2 | Edge::E4))
+            .or(lead.first());
+        let mut ops = lead.map_or(vec![], |(_, s)| to_e2(*s));
         let (mut sides, mut orth) = apply(first, &ops);
         let mut pieces = Vec::new();
         let mut block = first;
@@ -250,7 +260,29 @@ impl Topology {
             else {
                 break;
             };
-            let (next, s) = *j.iter().find(|(b, _)| *b != block).unwrap();
+            // the other end of the join (a block's own cut: its other side)
+            let (next, s) = if j[0].0 == j[1].0 {
+                (block, j[0].1)
+            } else {
+                *j.iter()
+                    .find(|(b, _)| *b != block)
+                    .expect("a join of two blocks")
+            };
+            if ring && next == first {
+                // The ring closes on the first block's E1: the same edge, the same way round
+                // (else the ring is twisted, a Möbius strip, and has no periodic indexing).
+                if sides[0][0].edge != e2.edge || sides[0][0].reversed != e2.reversed {
+                    return Err(Error::input(
+                        &at,
+                        format!(
+                            "the floating edges close a twisted ring at edge '{}': going round, \
+                             the blocks' E3 sides do not stay on one side of the ring",
+                            self.edges[e2.edge].name
+                        ),
+                    ));
+                }
+                break;
+            }
             ops = to_e1(s);
             let (ns, _) = apply(next, &ops);
             if ns[0][0].reversed != e2.reversed {
@@ -279,6 +311,11 @@ impl Topology {
             orth[1] = nf[1];
             block = next;
         }
+        if ring {
+            // the seam is inside the periodic block, not a side
+            orth[0] = false;
+            orth[1] = false;
+        }
         Ok(Group {
             name: pieces
                 .iter()
@@ -288,6 +325,7 @@ impl Topology {
             pieces,
             sides,
             orthogonal: orth,
+            periodic: ring,
         })
     }
 }

@@ -127,3 +127,79 @@ fn structural_errors_name_the_block_and_the_edges() {
         .to_string();
     assert!(m.contains("edge 'spare'") && m.contains("no block"), "{m}");
 }
+
+/// An annulus: with `two`, two blocks joined by the floating cuts `c0` and `c1` (a ring;
+/// inner vertices 0, 1, outer 2, 3), else one block whose cut `c0` is its E1 and E2.
+fn ring(two: bool) -> Topology {
+    if !two {
+        let v = ["a0", "b0"].map(String::from).to_vec();
+        let e = vec![
+            edge("in", 0, 0, 9, false),
+            edge("out", 1, 1, 9, false),
+            edge("c0", 0, 1, 5, true),
+        ];
+        let b = [BlockSides {
+            name: "one".into(),
+            sides: sides([&["c0"], &["c0"], &["in"], &["out"]]),
+            orthogonal: [false; 4],
+        }];
+        return Topology::new(v, e, &b, "t").unwrap();
+    }
+    let v = ["a0", "a1", "b0", "b1"].map(String::from).to_vec();
+    let e = vec![
+        edge("i0", 0, 1, 5, false),
+        edge("i1", 1, 0, 5, false),
+        edge("o0", 2, 3, 5, false),
+        edge("o1", 3, 2, 5, false),
+        edge("c0", 0, 2, 4, true),
+        edge("c1", 1, 3, 4, true),
+    ];
+    let b = [
+        BlockSides {
+            name: "top".into(),
+            sides: sides([&["c0"], &["c1"], &["i0"], &["o0"]]),
+            orthogonal: [false; 4],
+        },
+        BlockSides {
+            name: "bottom".into(),
+            sides: sides([&["c1"], &["c0"], &["i1"], &["o1"]]),
+            orthogonal: [false; 4],
+        },
+    ];
+    Topology::new(v, e, &b, "t").unwrap()
+}
+
+#[test]
+fn a_floating_cut_and_a_ring_of_floating_edges_make_one_periodic_group() {
+    let one = ring(false).groups("t").unwrap();
+    assert_eq!(one.len(), 1);
+    assert!(one[0].periodic);
+    assert_eq!(one[0].pieces.len(), 1);
+    assert!(one[0].pieces[0].ops.is_empty());
+    assert_eq!(one[0].sides[0], one[0].sides[1]);
+    let t = ring(true);
+    let g = t.groups("t").unwrap();
+    assert_eq!(g.len(), 1);
+    let g = &g[0];
+    assert!(g.periodic);
+    assert_eq!(g.name, "top+bottom");
+    // E1 and E2 of the group are the seam c0; the pieces follow each other round the ring.
+    assert_eq!(g.sides[0], g.sides[1]);
+    assert_eq!(t.edges[g.sides[0][0].edge].name, "c0");
+    assert_eq!(
+        g.pieces
+            .iter()
+            .map(|p| (p.block, p.offset))
+            .collect::<Vec<_>>(),
+        vec![(0, 0), (1, 4)]
+    );
+    assert_eq!(g.sides[2].len(), 2);
+    // Without floating edges the two blocks are two groups, neither periodic.
+    let mut fixed = t.clone();
+    for e in &mut fixed.edges {
+        e.floating = false;
+    }
+    let g = fixed.groups("t").unwrap();
+    assert_eq!(g.len(), 2);
+    assert!(g.iter().all(|g| !g.periodic));
+}

@@ -2,6 +2,7 @@
 //! scrambled start) and the surface blocks of each level on a warped parametrization.
 
 use super::{SurfaceGrid, VerifyOptions, WARP_STRENGTH};
+use crate::algebraic::periodic::{close_seam, periodic_start};
 use crate::algebraic::scramble::{scrambled, scrambled3};
 use crate::algebraic::transfinite3d;
 use crate::algebraic::transform::transfinite;
@@ -9,6 +10,7 @@ use crate::case::volume::{volume_place, wall_face};
 use crate::case::{BlockKind, LoadedCase};
 use crate::elliptic::orthogonal::grid_block_with;
 use crate::elliptic::orthogonal3d::grid_volume_corrected;
+use crate::elliptic::periodic;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::volume::grid_volume;
 use crate::elliptic::wall::LOOSE_TOLERANCE;
@@ -141,15 +143,24 @@ type Unit<T> = (usize, usize, Solve<T>);
 fn start_2d<const D: usize>(
     b: &Boundary2<D>,
     orth: [bool; 4],
+    periodic: bool,
     case: &LoadedCase,
     seed: u64,
     place: &str,
     folded: impl Fn(&Grid2<D>) -> usize,
 ) -> Result<Unit<Grid2<D>>> {
+    let spec = &case.case.solver;
+    if periodic {
+        // a floating cut: the periodic start scrambled, its seam closed again
+        let mut start = scrambled(&periodic_start(b), seed);
+        close_seam(&mut start);
+        let (cells, bad) = ((start.ni() - 1) * (start.nj() - 1), folded(&start));
+        let r = periodic::grid_block(b, Some(start), orth, spec.control, &spec.picard, place);
+        return Ok((cells, bad, solved(r.map(|r| (r.grid, r.picard)))?));
+    }
     let start = scrambled(&transfinite(b), seed);
     let cells = (start.ni() - 1) * (start.nj() - 1);
     let bad = folded(&start);
-    let spec = &case.case.solver;
     let mut solver = linear(case)?;
     let r = grid_block_with(
         b,
@@ -204,9 +215,10 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 BlockKind::Minimal => {
                     let pts = lists.map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
                     let bnd = Boundary2::new(pts, &place)?;
-                    let (c, f, r) = start_2d(&bnd, g.orthogonal, case, seed, &place, |s| {
-                        quality_surface(s).folded_cells
-                    })?;
+                    let (c, f, r) =
+                        start_2d(&bnd, g.orthogonal, g.periodic, case, seed, &place, |s| {
+                            quality_surface(s).folded_cells
+                        })?;
                     let cut = |x: Grid2<3>| {
                         let pieces = g.pieces.iter();
                         pieces.map(|p| Block::Surface(p.cut(&x))).collect()
@@ -215,9 +227,10 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 }
                 _ => {
                     let bnd = case.planar_from(lists, &place)?;
-                    let (c, f, r) = start_2d(&bnd, g.orthogonal, case, seed, &place, |s| {
-                        quality2d(s).folded_cells
-                    })?;
+                    let (c, f, r) =
+                        start_2d(&bnd, g.orthogonal, g.periodic, case, seed, &place, |s| {
+                            quality2d(s).folded_cells
+                        })?;
                     let cut = |x: Grid2<2>| {
                         let pieces = g.pieces.iter();
                         pieces.map(|p| Block::Planar(p.cut(&x))).collect()
@@ -235,13 +248,14 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 BlockKind::Surface => continue,
                 BlockKind::Planar => {
                     let b = case.planar_boundary(k)?;
-                    let (c, f, r) =
-                        start_2d(&b, orth, case, seed, &place, |s| quality2d(s).folded_cells)?;
+                    let (c, f, r) = start_2d(&b, orth, false, case, seed, &place, |s| {
+                        quality2d(s).folded_cells
+                    })?;
                     (c, f, r.map(|(x, p)| (vec![Block::Planar(x)], p)))
                 }
                 BlockKind::Minimal => {
                     let b = case.minimal_boundary(k)?;
-                    let (c, f, r) = start_2d(&b, orth, case, seed, &place, |s| {
+                    let (c, f, r) = start_2d(&b, orth, false, case, seed, &place, |s| {
                         quality_surface(s).folded_cells
                     })?;
                     (c, f, r.map(|(x, p)| (vec![Block::Surface(x)], p)))

@@ -1,0 +1,284 @@
+//! The grid system [24] on a block that is periodic in ξ: an O-grid whose cut (E1 = E2, one
+//! edge) floats. Node i = 0 and node i = N are one node; the cut's interior nodes are
+//! unknowns like any other, and the nine-point stencils [43, 44] of columns 0 and N − 1 wrap
+//! around the seam. Only E3 and E4 (the airfoil and the far field, say) carry Dirichlet data.
+//!
+//! The unknowns are the columns 0..N − 1 of the rows 1..M − 1 ([`Periodic9`]); column N is
+//! column 0 copied bit for bit after every step, so the written block has its seam
+//! duplicated exactly. The algebraic transformation, the start grid and the control functions
+//! come from the two η boundaries only ([`crate::algebraic::periodic`]): the cut's given nodes
+//! are not used.
+//!
+//! The Picard steps, their stop and the report are those of [`crate::elliptic::picard`],
+//! damped by [`DAMPING`]. Each
+//! step's linear systems are solved by faer's sparse LU ([`DirectLuPeriodic`]) whatever
+//! `[solver] linear` says: the black-box multigrid is not periodic. Newton steps and
+//! orthogonality (Section 2.4) are refused for periodic blocks, nested iteration is not used.
+
+use crate::algebraic::control2d::Control2;
+use crate::algebraic::periodic::{close_seam, periodic_control_for, periodic_start};
+use crate::algebraic::ControlKind;
+use crate::elliptic::picard::{self, BlockResult, Nonlinear, PicardInfo, PicardParams};
+use crate::grid::boundary::Boundary2;
+use crate::grid::{Edge, Grid2};
+use crate::solve::periodic9::{DirectLuPeriodic, Periodic9};
+use crate::{Error, Result};
+use rayon::prelude::*;
+
+/// Each Picard step moves the nodes by this fraction of its correction (under-relaxation).
+/// Measured on the one-block NACA0012 O-grid (`examples/naca0012_oneblock.toml`): full steps
+/// fold the grid at the trailing edge after a few steps and diverge (the frozen operator
+/// becomes singular); half steps converge, fold-free, in ~150 steps. Annuli converge either
+/// way. The fixed point is the same; the stop's error estimate sees the slower contraction.
+pub const DAMPING: f64 = 0.5;
+
+/// Assembles the frozen nine-point operator of [43, 44] at iterate `x` (a periodic block,
+/// column N = column 0) and the right-hand sides carrying the Dirichlet values of E3 and E4.
+/// Rows are multiplied by −1 so that the diagonal 2(P + R) is positive, as in
+/// [`crate::elliptic::poisson2d::assemble`].
+pub fn assemble<const D: usize>(
+    x: &Grid2<D>,
+    ctrl: &Control2,
+    a: &mut Periodic9,
+    rhs: &mut [Vec<f64>; D],
+) {
+    use crate::solve::stencil9::dir::*;
+    let (ni, nj) = (x.ni(), x.nj());
+    let nc = ni - 1;
+    assert_eq!((a.nx(), a.ny()), (nc, nj - 2));
+    let xs = x.coords();
+    a.coefs_mut()
+        .par_chunks_mut(nc)
+        .enumerate()
+        .for_each(|(jj, arow)| {
+            let j = jj + 1;
+            for (i, st) in arow.iter_mut().enumerate() {
+                let n = i + ni * j;
+                // east of column nc − 1 is column nc (= column 0), west of column 0 is nc − 1
+                let (e, w) = (n + 1, if i == 0 { nc - 1 + ni * j } else { n - 1 });
+                let (no, so) = (n + ni, n - ni);
+                let (mut g11, mut g12, mut g22) = (0.0, 0.0, 0.0);
+                for c in xs.iter() {
+                    let xi = 0.5 * (c[e] - c[w]);
+                    let eta = 0.5 * (c[no] - c[so]);
+                    g11 += xi * xi;
+                    g12 += xi * eta;
+                    g22 += eta * eta;
+                }
+                let (p, q, r) = (g22, -g12, g11);
+                let k = ctrl.at(n);
+                let sc = p * k[0] + 2.0 * q * k[2] + r * k[4];
+                let tc = p * k[1] + 2.0 * q * k[3] + r * k[5];
+                st[C] = 2.0 * (p + r);
+                st[E] = -(p + 0.5 * sc);
+                st[W] = -(p - 0.5 * sc);
+                st[N] = -(r + 0.5 * tc);
+                st[S] = -(r - 0.5 * tc);
+                st[NE] = -0.5 * q;
+                st[SW] = -0.5 * q;
+                st[NW] = 0.5 * q;
+                st[SE] = 0.5 * q;
+            }
+        });
+    // E3 and E4 neighbours go to the right-hand side (first and last row of unknowns).
+    for b in rhs.iter_mut() {
+        b.fill(0.0);
+    }
+    let ny = nj - 2;
+    for (jj, dj, jb) in [(0, 0, 0), (ny - 1, 2, nj - 1)] {
+        for i in 0..nc {
+            let p = i + nc * jj;
+            for di in 0..3 {
+                let k = di + 3 * dj;
+                let m = a.wrap(i, di) + ni * jb;
+                let v = a.coefs()[p][k];
+                for (b, c) in rhs.iter_mut().zip(xs.iter()) {
+                    b[p] -= v * c[m];
+                }
+                a.coefs_mut()[p][k] = 0.0;
+            }
+        }
+    }
+}
+
+/// The residual b − A x of every unknown (per coordinate, into `out`) and its largest value
+/// relative to the row's diagonal and to `diam`, as [`crate::elliptic::poisson2d::residual`].
+fn residual<const D: usize>(
+    x: &Grid2<D>,
+    a: &Periodic9,
+    rhs: &[Vec<f64>; D],
+    diam: f64,
+    out: &mut [Vec<f64>; D],
+) -> f64 {
+    let (ni, nc) = (x.ni(), a.nx());
+    let xs = x.coords();
+    let mut worst = 0.0f64;
+    for (o, (xc, b)) in out.iter_mut().zip(xs.iter().zip(rhs.iter())) {
+        let w = o
+            .par_chunks_mut(nc)
+            .zip(a.coefs().par_chunks(nc))
+            .enumerate()
+            .map(|(jj, (orow, arow))| {
+                let j = jj + 1;
+                let mut w = 0.0f64;
+                for (i, (r, st)) in orow.iter_mut().zip(arow).enumerate() {
+                    let mut ax = 0.0;
+                    for dj in 0..3 {
+                        let row = ni * (j + dj - 1);
+                        for di in 0..3 {
+                            ax += st[di + 3 * dj] * xc[row + a.wrap(i, di)];
+                        }
+                    }
+                    *r = b[i + nc * jj] - ax;
+                    w = w.max((*r / st[4]).abs());
+                }
+                w
+            })
+            .reduce(|| 0.0, f64::max);
+        worst = worst.max(w);
+    }
+    worst / diam
+}
+
+/// The Picard system of one periodic block.
+struct SystemP<'a, const D: usize> {
+    x: &'a mut Grid2<D>,
+    ctrl: &'a Control2,
+    solver: DirectLuPeriodic,
+    a: Periodic9,
+    rhs: [Vec<f64>; D],
+    r: [Vec<f64>; D],
+    u: [Vec<f64>; D],
+    diam: f64,
+}
+
+impl<const D: usize> picard::System for SystemP<'_, D> {
+    type Op = Periodic9;
+
+    fn evaluate(&mut self) -> f64 {
+        assemble(self.x, self.ctrl, &mut self.a, &mut self.rhs);
+        residual(self.x, &self.a, &self.rhs, self.diam, &mut self.r)
+    }
+
+    fn linear(&mut self) -> picard::Linear<'_, Periodic9> {
+        picard::Linear::new(&mut self.solver, &self.a, &self.r, &mut self.u)
+    }
+
+    fn apply(&mut self, largest: f64) -> f64 {
+        let (ni, nc) = (self.x.ni(), self.a.nx());
+        for uc in self.u.iter_mut() {
+            uc.par_iter_mut().for_each(|v| *v *= DAMPING);
+        }
+        for (c, uc) in self.u.iter().enumerate() {
+            let full = self.x.coord_mut(c);
+            for (jj, row) in uc.chunks(nc).enumerate() {
+                let base = ni * (jj + 1);
+                for (f, d) in full[base..base + nc].iter_mut().zip(row) {
+                    *f += d;
+                }
+            }
+        }
+        close_seam(self.x);
+        if self.x.all_finite() {
+            DAMPING * largest / self.diam
+        } else {
+            f64::NAN
+        }
+    }
+
+    fn diameter(&self) -> f64 {
+        self.diam
+    }
+}
+
+/// Solves the periodic grid system [24] by Picard iteration from `x` (its rows j = 0 and
+/// j = M are the Dirichlet data; column N is overwritten by column 0). `place` names the
+/// block in errors; non-convergence is reported in the returned [`PicardInfo`].
+///
+/// # Errors
+/// A block of fewer than 4 × 3 nodes, control functions of another size or not finite,
+/// `nonlinear = "newton"`, a failed linear solve.
+pub fn solve<const D: usize>(
+    x: &mut Grid2<D>,
+    ctrl: &Control2,
+    params: &PicardParams,
+    place: &str,
+) -> Result<PicardInfo> {
+    let (ni, nj) = (x.ni(), x.nj());
+    picard::check_input(
+        place,
+        ni >= 4 && nj >= 3,
+        "a periodic block needs at least 4 × 3 nodes",
+        (ctrl.ni(), ctrl.nj()) == (ni, nj),
+        ctrl.all_finite(),
+    )?;
+    if params.nonlinear == Nonlinear::Newton {
+        return Err(Error::input(
+            place,
+            "nonlinear = \"newton\" is not available for a periodic block (a floating cut): \
+             use nonlinear = \"picard\"",
+        ));
+    }
+    close_seam(x);
+    let (nc, ny) = (ni - 1, nj - 2);
+    let diam = x.diameter();
+    let mut sys = SystemP {
+        x,
+        ctrl,
+        solver: DirectLuPeriodic::new(),
+        a: Periodic9::zeros(nc, ny),
+        rhs: std::array::from_fn(|_| vec![0.0; nc * ny]),
+        r: std::array::from_fn(|_| vec![0.0; nc * ny]),
+        u: std::array::from_fn(|_| vec![0.0; nc * ny]),
+        diam,
+    };
+    picard::run(&mut sys, params, 0.0, place, &mut |_, _| {}).map(|(info, _)| info)
+}
+
+/// Grids one periodic block (E1 = E2 the floating cut): the start grid between E3 and E4
+/// ([`periodic_start`]), or `start` (its E3 and E4 rows replaced by `b`'s), control functions
+/// of `kind` from the η boundaries ([`periodic_control_for`]), Picard iteration of [24].
+/// `orthogonal` (E1, E2, E3, E4) must be all false.
+///
+/// # Errors
+/// Orthogonality asked for, E3 or E4 not closed (its first and last nodes apart), and the
+/// errors of [`solve`].
+pub fn grid_block<const D: usize>(
+    b: &Boundary2<D>,
+    start: Option<Grid2<D>>,
+    orthogonal: [bool; 4],
+    kind: ControlKind,
+    params: &PicardParams,
+    place: &str,
+) -> Result<BlockResult<D>> {
+    if let Some(e) = Edge::ALL.into_iter().find(|e| orthogonal[e.index()]) {
+        return Err(Error::input(
+            format!("{place}, edge {e}"),
+            "orthogonality is not available on a periodic block (a floating cut) yet: \
+             remove `orthogonal` from its edges, or fix the cut",
+        ));
+    }
+    for e in [Edge::E3, Edge::E4] {
+        let p = b.edge(e);
+        let gap = (0..D)
+            .map(|c| (p[0][c] - p[p.len() - 1][c]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        if gap > 1e-6 * b.diameter() {
+            return Err(Error::input(
+                format!("{place}, edge {e}"),
+                format!("a periodic block's {e} must be closed, but its ends are {gap:.3e} apart"),
+            ));
+        }
+    }
+    let mut x = match start {
+        Some(mut g) => {
+            b.apply_to(&mut g);
+            g
+        }
+        None => periodic_start(b),
+    };
+    let ctrl = periodic_control_for(b, kind);
+    let picard = solve(&mut x, &ctrl, params, place)?;
+    Ok(BlockResult { grid: x, picard })
+}
