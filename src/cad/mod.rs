@@ -33,13 +33,16 @@
 
 mod edge;
 mod face;
+mod holes;
 mod patch;
 mod prescan;
+mod split;
 mod trim;
 mod write;
 
 pub use face::{grid_face, FaceGrid};
 pub use patch::grid_patch;
+pub use split::grid_face_blocks;
 pub use write::write_step_surface;
 
 use crate::{Error, Result};
@@ -75,6 +78,9 @@ pub enum Route {
     Patch,
     /// One boundary loop of this many edges, gridded as a block face ([`grid_face`]).
     Trimmed(usize),
+    /// An outer loop and this many holes, gridded as several blocks: an O-type ring of four
+    /// around each hole ([`grid_face_blocks`]).
+    Holes(usize),
     /// Not gridable, with the reason.
     Refused(String),
 }
@@ -115,10 +121,7 @@ impl StepFace {
         match &self.loops {
             Err(e) => Route::Refused(e.clone()),
             Ok(l) if l.is_empty() => Route::Refused("no boundary loop".into()),
-            Ok(l) if l.len() > 1 => Route::Refused(format!(
-                "{} boundary loops (holes): a face with holes is not one block face",
-                l.len()
-            )),
+            Ok(l) if l.len() > 1 => Route::Holes(l.len() - 1),
             Ok(l) => Route::Trimmed(l[0].len()),
         }
     }

@@ -15,16 +15,16 @@ use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 pub(super) type CadSurface = TruckSurface<StepSurface>;
 
 /// Samples per edge of the loop polygon in (u, v) (hints, orientation, closure).
-const NS: usize = 32;
+pub(super) const NS: usize = 32;
 /// An edge shorter than this fraction of the loop is degenerate (a pole or collapsed side).
 const DEGENERATE: f64 = 1e-9;
 
 /// One oriented edge of the loop with its arclength table and its (u, v) samples.
-struct LoopCurve {
+pub(super) struct LoopCurve {
     curve: TruckCurve<Curve3D>,
     map: ArclengthMap,
     /// (u, v) at the normalized arclengths k / NS, k = 0..=NS.
-    uv: Vec<[f64; 2]>,
+    pub uv: Vec<[f64; 2]>,
 }
 
 /// A point of the loop: edge `edge` at normalized arclength `sigma` of that edge.
@@ -38,8 +38,8 @@ pub(super) struct LoopPoint {
 pub(super) struct FaceLoop<'a> {
     surface: &'a CadSurface,
     bounds: [[f64; 2]; 2],
-    periods: [Option<f64>; 2],
-    edges: Vec<LoopCurve>,
+    pub periods: [Option<f64>; 2],
+    pub edges: Vec<LoopCurve>,
     /// Largest distance between a sampled boundary point and the surface.
     pub gap: f64,
     /// Distance beyond which a boundary point is "not on the surface".
@@ -236,7 +236,7 @@ impl<'a> FaceLoop<'a> {
     }
 
     /// Length of edge `k`.
-    fn length(&self, k: usize) -> f64 {
+    pub fn length(&self, k: usize) -> f64 {
         self.edges[k].map.length()
     }
 
@@ -285,7 +285,7 @@ impl<'a> FaceLoop<'a> {
     }
 
     /// Turning angle (radians, 0 = straight on) of the loop at the start of edge `k`.
-    fn turning(&self, k: usize) -> f64 {
+    pub fn turning(&self, k: usize) -> f64 {
         let n = self.len();
         let a = &self.edges[(k + n - 1) % n].curve;
         let b = &self.edges[k].curve;
@@ -301,7 +301,7 @@ impl<'a> FaceLoop<'a> {
     /// Whether the loop turns outwards (a reentrant, concave vertex) at the start of edge
     /// `k`: the turn in (u, v) against the loop's sense of rotation, from the chords of the
     /// (u, v) samples next to the vertex (`ccw`: the loop runs counterclockwise in (u, v)).
-    fn reentrant(&self, k: usize, ccw: bool) -> bool {
+    pub fn reentrant(&self, k: usize, ccw: bool) -> bool {
         let n = self.len();
         let (a, b) = (&self.edges[(k + n - 1) % n].uv, &self.edges[k].uv);
         let s = self.scale;
@@ -427,7 +427,7 @@ impl<'a> FaceLoop<'a> {
     }
 
     /// The loop point `s` (arclength) forwards from `a`.
-    fn advance(&self, a: LoopPoint, mut s: f64) -> LoopPoint {
+    pub fn advance(&self, a: LoopPoint, mut s: f64) -> LoopPoint {
         let n = self.len();
         let mut p = a;
         for _ in 0..=n {

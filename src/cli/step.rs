@@ -118,6 +118,11 @@ fn list(file: &Path) -> Result<()> {
                 "block face: one loop of {n} edge{}",
                 if n == 1 { "" } else { "s" }
             ),
+            Route::Holes(n) => format!(
+                "{} block faces: an O-type ring of 4 blocks around each of {n} hole{}",
+                4 * n,
+                if n == 1 { "" } else { "s" }
+            ),
             Route::Refused(why) => format!("not gridable: {why}"),
         };
         println!("face {}: {}, {what}", f.index, f.surface_type);
@@ -156,25 +161,31 @@ fn grid(a: &GridArgs) -> Result<()> {
     let mut budget = ellipgrid::case::limits::Budget::default();
     for f in &chosen {
         let at = format!("{name}: face {} (--ni, --nj)", f.index);
-        budget.add_solved(
-            &at,
-            &[a.ni, a.nj],
-            ellipgrid::case::limits::BYTES_PER_NODE_2D,
-            &a.linear,
-        )?;
+        let blocks = match f.route() {
+            Route::Holes(n) => 4 * n,
+            _ => 1,
+        };
+        for _ in 0..blocks {
+            budget.add_solved(
+                &at,
+                &[a.ni, a.nj],
+                ellipgrid::case::limits::BYTES_PER_NODE_2D,
+                &a.linear,
+            )?;
+        }
     }
     budget.check_memory(&format!("{name} (--ni, --nj)"))?;
     let (di, dj) = (spacing(a.first_i, a.last_i), spacing(a.first_j, a.last_j));
     solve::select::by_name(&a.linear).map_err(|m| Error::input("--linear", m))?;
     // Every face on its own (in parallel): one face's failure does not lose the others.
-    let results: Vec<(&StepFace, Result<cad::FaceGrid>)> = chosen
+    let results: Vec<(&StepFace, Result<Vec<cad::FaceGrid>>)> = chosen
         .par_iter()
         .map(|f| {
             let place = format!("{name}: face {}", f.index);
             let r = solve::select::by_name(&a.linear)
                 .map_err(|m| Error::input("--linear", m))
                 .and_then(|mut solver| {
-                    cad::grid_face(f, (a.ni, a.nj), &di, &dj, solver.as_mut(), &place)
+                    cad::grid_face_blocks(f, (a.ni, a.nj), &di, &dj, solver.as_mut(), &place)
                 });
             (*f, r)
         })
@@ -183,9 +194,10 @@ fn grid(a: &GridArgs) -> Result<()> {
     let mut fold: Option<Error> = None;
     let (mut failed, mut folded) = (Vec::new(), Vec::new());
     let mut folded_cells = 0;
+    let mut written_faces = 0;
     for (f, r) in results {
         let place = format!("{name}: face {}", f.index);
-        let g = match r {
+        let grids = match r {
             Ok(g) => g,
             Err(e) => {
                 if a.face.is_some() {
@@ -196,46 +208,58 @@ fn grid(a: &GridArgs) -> Result<()> {
                 continue;
             }
         };
-        let q = quality::quality_surface(&g.result.grid);
-        if !a.quiet {
-            println!(
-                "face {} ({}, {} × {} nodes):",
-                f.index, f.surface_type, a.ni, a.nj
-            );
-            if !g.corner_angles.is_empty() {
-                let angles: Vec<String> =
-                    g.corner_angles.iter().map(|d| format!("{d:.0}°")).collect();
-                println!(
-                    "  corners turning {}; boundary within {:.1e} of the surface",
-                    angles.join(", "),
-                    g.gap
-                );
-            }
-            println!("{q}");
-        }
-        let q = AnyQuality::from(q);
-        if q.is_folded() {
-            let e = Error::Folded {
-                place,
-                count: q.folded_cells(),
-                first: q.folded_list(),
+        // A face of several blocks (holes) is written, or left out, as a whole.
+        let several = grids.len() > 1;
+        let mut face_blocks = Vec::with_capacity(grids.len());
+        let mut face_folded = false;
+        for (b, g) in grids.into_iter().enumerate() {
+            let (place, block) = if several {
+                (
+                    format!("{place}, block {b}"),
+                    format!("face{}.b{b}", f.index),
+                )
+            } else {
+                (place.clone(), format!("face{}", f.index))
             };
-            folded.push(f.index);
-            folded_cells += q.folded_cells();
-            if !a.allow_folded {
+            let q = quality::quality_surface(&g.result.grid);
+            if !a.quiet {
+                println!("{block} ({}, {} × {} nodes):", f.surface_type, a.ni, a.nj);
+                if !g.corner_angles.is_empty() {
+                    let angles: Vec<String> =
+                        g.corner_angles.iter().map(|d| format!("{d:.0}°")).collect();
+                    println!(
+                        "  corners turning {}; boundary within {:.1e} of the surface",
+                        angles.join(", "),
+                        g.gap
+                    );
+                }
+                println!("{q}");
+            }
+            let q = AnyQuality::from(q);
+            if q.is_folded() {
+                let e = Error::Folded {
+                    place,
+                    count: q.folded_cells(),
+                    first: q.folded_list(),
+                };
+                face_folded = true;
+                folded_cells += q.folded_cells();
                 // With --all the face is left out; the others are still written.
-                if a.face.is_none() {
+                if !a.allow_folded && a.face.is_none() {
                     eprintln!("not written: {e}");
                 }
                 fold.get_or_insert(e);
-                if a.face.is_none() {
-                    continue;
-                }
-            } else {
-                fold.get_or_insert(e);
+            }
+            face_blocks.push((block, Block::Surface(g.result.grid)));
+        }
+        if face_folded {
+            folded.push(f.index);
+            if !a.allow_folded && a.face.is_none() {
+                continue;
             }
         }
-        blocks.push((format!("face{}", f.index), Block::Surface(g.result.grid)));
+        blocks.extend(face_blocks);
+        written_faces += 1;
     }
     let write = a.face.is_none() || fold.is_none() || a.allow_folded;
     if blocks.is_empty() {
@@ -261,7 +285,7 @@ fn grid(a: &GridArgs) -> Result<()> {
             count: folded_cells,
             first: format!(
                 "faces {folded:?} (of {total}; {} written{})",
-                blocks.len(),
+                written_faces,
                 if failed.is_empty() {
                     String::new()
                 } else {
@@ -275,7 +299,7 @@ fn grid(a: &GridArgs) -> Result<()> {
             name,
             format!(
                 "{} of {total} faces gridded and written; not gridded: faces {failed:?} (reasons above)",
-                blocks.len(),
+                written_faces,
             ),
         ));
     }
