@@ -14,7 +14,7 @@
 //! `--only NAME` runs the files whose name contains NAME; `--show REASON` prints the file and
 //! face number of every face whose outcome contains REASON (e.g. `--show "(u, v)"`).
 
-use ellipgrid::cad::{grid_face, read_step_faces, Route};
+use ellipgrid::cad::{grid_face_blocks, read_step_faces, Route};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::quality;
 use ellipgrid::quality::quality3d::AnyQuality;
@@ -64,10 +64,13 @@ fn grid_file(path: PathBuf, n: usize) -> Result<Faces, String> {
                 Route::Refused(why) => Outcome::Refused(why),
                 _ => {
                     let mut solver = ellipgrid::solve::select::by_name("direct").unwrap();
-                    match grid_face(f, (n, n), &d, &d, solver.as_mut(), "") {
-                        Ok(g) => {
-                            let q = AnyQuality::from(quality::quality_surface(&g.result.grid));
-                            if q.is_folded() {
+                    match grid_face_blocks(f, (n, n), &d, &d, solver.as_mut(), "") {
+                        Ok(gs) => {
+                            let folded = gs.iter().any(|g| {
+                                AnyQuality::from(quality::quality_surface(&g.result.grid))
+                                    .is_folded()
+                            });
+                            if folded {
                                 Outcome::Folded
                             } else {
                                 Outcome::Ok

@@ -5,7 +5,7 @@
 
 mod common;
 use common::{ellipgrid, root, text};
-use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid, Route};
+use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Grid2;
 use ellipgrid::quality;
