@@ -32,7 +32,7 @@ fn node(g: &Grid2<3>, p: usize) -> [f64; 3] {
 }
 
 /// Σ ½ |d₁ × d₂| over the cells (exact for planar quads), and Σ ½ (d₁ × d₂) · n at the cell
-/// centres (positive if the grid's normal is `n`'s).
+/// centres (positive if the grid's normal is `n`'s; `n` need not be a unit vector).
 fn area(g: &Grid2<3>, n: &dyn Fn([f64; 3]) -> [f64; 3]) -> (f64, f64) {
     let (ni, nj) = (g.ni(), g.nj());
     let (mut a, mut signed) = (0.0, 0.0);
@@ -49,6 +49,7 @@ fn area(g: &Grid2<3>, n: &dyn Fn([f64; 3]) -> [f64; 3]) -> (f64, f64) {
             ];
             let m = [0, 1, 2].map(|k| 0.25 * (x0[k] + x1[k] + x2[k] + x3[k]));
             let nm = n(m);
+            let nm = nm.map(|v| v / (nm[0] * nm[0] + nm[1] * nm[1] + nm[2] * nm[2]).sqrt());
             a += (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
             signed += c[0] * nm[0] + c[1] * nm[1] + c[2] * nm[2];
         }
@@ -240,6 +241,25 @@ fn a_cylinder_face_with_two_holes_across_its_seam_side_is_gridded_on_the_cylinde
 }
 
 #[test]
+fn a_closed_cylinder_band_without_a_seam_edge_is_four_blocks_across_it() {
+    // cylinder_band_seamless.step (make_band.py): the band r = 1, 0 ≤ z ≤ 2 bounded by its
+    // two circles alone, as two loops; its j = 0 lines on one of the circles.
+    let faces = read_step_faces(&file("cylinder_band_seamless.step")).unwrap();
+    assert_eq!(faces[0].route(), Route::Holes(1));
+    let on_circle =
+        |x: [f64; 3]| x[2].abs().min((x[2] - 2.0).abs()) + (x[0].hypot(x[1]) - 1.0).abs();
+    let known = Known {
+        surface: &|x| (x[0].hypot(x[1]) - 1.0).abs(),
+        normal: &|x| [x[0], x[1], 0.0],
+        holes: &[&on_circle],
+        hole_tol: 1e-11,
+        area: 4.0 * PI,
+        seam: &|_| false,
+    };
+    check_face("cylinder_band_seamless.step", 1, &known);
+}
+
+#[test]
 fn step_grid_all_writes_every_face_of_the_plate_with_its_hole_blocks() {
     let dir = tempfile::tempdir().unwrap();
     let step = file("plate_with_holes.step");
@@ -279,9 +299,7 @@ fn step_grid_all_writes_every_face_of_the_plate_with_its_hole_blocks() {
     let t = text(&o);
     assert!(o.status.success(), "{t}");
     assert!(
-        t.contains(
-            "face 5: plane, 8 block faces: an O-type ring of 4 blocks around each of 2 holes"
-        ),
+        t.contains("face 5: plane, 3 boundary loops, gridded as several blocks: an O-type ring"),
         "{t}"
     );
 }

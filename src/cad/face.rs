@@ -248,7 +248,7 @@ fn boundary(
     place: &str,
 ) -> Result<FaceBoundary> {
     let err = |m: String| Error::input(place, m);
-    let mut lp = FaceLoop::new(surface, edges, bounds(surface), GAP_TOL).map_err(err)?;
+    let mut lp = FaceLoop::new(surface, edges, bounds(surface), GAP_TOL, false).map_err(err)?;
     let (c, angles) = lp.corners(min_turn);
     let scale = lp.metric_scale();
     let forward = (lp.signed_area(scale) > 0.0) == orientation;

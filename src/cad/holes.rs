@@ -75,7 +75,7 @@ pub(super) struct Layout {
 const CORNER_TURN: f64 = 0.35;
 
 /// A loop's polygon in scaled (u, v): every sample but each edge's last, with its loop point.
-fn polygon(lp: &FaceLoop, scale: [f64; 2]) -> Vec<(LoopPoint, [f64; 2])> {
+pub(super) fn polygon(lp: &FaceLoop, scale: [f64; 2]) -> Vec<(LoopPoint, [f64; 2])> {
     lp.edges
         .iter()
         .enumerate()
@@ -130,7 +130,7 @@ fn at(lp: &mut FaceLoop, p: LoopPoint, scale: [f64; 2]) -> Result<[f64; 2], Stri
 
 /// The loop point on polygon segment `k` (to the next sample) where `f` of the scaled
 /// (u, v) changes sign, by bisection on the edge's arclength.
-fn locate(
+pub(super) fn locate(
     lp: &mut FaceLoop,
     poly: &[(LoopPoint, [f64; 2])],
     k: usize,
@@ -176,7 +176,10 @@ fn locate(
 }
 
 /// The polygon segments where `f` changes sign, with whether it increases along the loop.
-fn crossings(poly: &[(LoopPoint, [f64; 2])], f: impl Fn([f64; 2]) -> f64) -> Vec<(usize, bool)> {
+pub(super) fn crossings(
+    poly: &[(LoopPoint, [f64; 2])],
+    f: impl Fn([f64; 2]) -> f64,
+) -> Vec<(usize, bool)> {
     let n = poly.len();
     (0..n)
         .filter_map(|k| {

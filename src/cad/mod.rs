@@ -31,6 +31,7 @@
 //! below 10⁻² in magnitude with 11 significant digits (absolute error below 5·10⁻¹⁴), larger
 //! ones exactly; a face with `same_sense = .F.` is read with u and v swapped.
 
+mod band;
 mod edge;
 mod face;
 mod holes;

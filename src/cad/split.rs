@@ -10,6 +10,7 @@
 //! are the blocks' i direction (`ni`, `dist_i`); the cuts from a hole outwards are the j
 //! direction (`nj`, `dist_j`, its first spacing at the hole).
 
+use super::band::band;
 use super::face::{bounds, FaceGrid, GAP_TOL};
 use super::holes::{layout, Node, Side};
 use super::trim::{CadSurface, FaceLoop};
@@ -71,45 +72,27 @@ fn holes(
     let edges = face.loops.as_ref().map_err(|e| err(e.clone()))?;
     let mut loops = Vec::with_capacity(edges.len());
     for (l, e) in edges.iter().enumerate() {
-        let lp = FaceLoop::new(surface, e, bounds(surface), GAP_TOL)
+        let lp = FaceLoop::new(surface, e, bounds(surface), GAP_TOL, true)
             .map_err(|m| err(format!("loop {}: {m}", l + 1)))?;
         loops.push(lp);
     }
-    // The outer loop (largest area) first; holes moved by whole periods next to it.
-    let s0 = loops[0].metric_scale();
-    let outer = (0..loops.len())
-        .max_by(|a, b| {
-            let area = |k: usize| loops[k].signed_area(s0).abs();
-            area(*a).total_cmp(&area(*b)).then(b.cmp(a))
-        })
-        .unwrap_or(0);
-    let first = loops.remove(outer);
-    loops.insert(0, first);
     let scale = loops[0].metric_scale();
-    let mean = |lp: &FaceLoop| {
-        let n = lp.edges.iter().map(|e| e.uv.len()).sum::<usize>().max(1) as f64;
-        let s = lp
-            .edges
-            .iter()
-            .flat_map(|e| &e.uv)
-            .fold([0.0; 2], |s, q| [s[0] + q[0], s[1] + q[1]]);
-        [s[0] / n, s[1] / n]
+    let winds = loops.iter().filter(|l| l.winding.is_some()).count();
+    let lay = if winds == 2 && loops.len() == 2 {
+        band(&mut loops, scale).map_err(err)?
+    } else if winds > 0 {
+        return Err(err(
+            "a boundary loop winds around the surface (a closed band without a seam edge, \
+             or a cap around a pole) and the face has other loops: not split into blocks"
+                .into(),
+        ));
+    } else {
+        let scale = outer_first(&mut loops);
+        let ccw: Vec<bool> = loops.iter().map(|lp| lp.signed_area(scale) > 0.0).collect();
+        layout(&mut loops, &ccw, scale, face.orientation).map_err(err)?
     };
-    let m0 = mean(&loops[0]);
-    for lp in loops.iter_mut().skip(1) {
-        let m = mean(lp);
-        for d in 0..2 {
-            if let Some(t) = lp.periods[d].filter(|t| *t > 0.0) {
-                let shift = t * ((m0[d] - m[d]) / t).round();
-                lp.edges
-                    .iter_mut()
-                    .flat_map(|e| e.uv.iter_mut())
-                    .for_each(|q| q[d] += shift);
-            }
-        }
-    }
-    let ccw: Vec<bool> = loops.iter().map(|lp| lp.signed_area(scale) > 0.0).collect();
-    let lay = layout(&mut loops, &ccw, scale, face.orientation).map_err(err)?;
+    let scale = loops[0].metric_scale();
+    let periods = loops[0].periods;
     let gap = loops.iter().map(|lp| lp.gap).fold(0.0, f64::max);
     let node = |loops: &mut [FaceLoop], n: Node| -> Result<(Vec3, [f64; 2])> {
         let (x, w) = loops[n.l].sample(n.p, n.p, &[0.0]).map_err(err)?;
@@ -122,7 +105,8 @@ fn holes(
         } else {
             (ni, dist[0])
         };
-        let (a, b) = (node(&mut loops, cut.from)?, node(&mut loops, cut.to)?);
+        let (a, mut b) = (node(&mut loops, cut.from)?, node(&mut loops, cut.to)?);
+        b.1 = unwrap(b.1, a.1, periods);
         cuts.push(straight(
             surface,
             a,
@@ -182,6 +166,7 @@ fn holes(
             points[e.index()] = x;
             uv[e.index()] = w;
         }
+        orient(&mut points, &mut uv, periods, scale, face.orientation);
         let r = grid_face_composite_refined(
             surface,
             &points,
@@ -200,6 +185,89 @@ fn holes(
         });
     }
     Ok(out)
+}
+
+/// Moves the outer loop (largest (u, v) area) first and holes on periodic surfaces by whole
+/// periods next to it; returns the outer loop's metric scale.
+fn outer_first(loops: &mut Vec<FaceLoop>) -> [f64; 2] {
+    let s0 = loops[0].metric_scale();
+    let outer = (0..loops.len())
+        .max_by(|a, b| {
+            let area = |k: usize| loops[k].signed_area(s0).abs();
+            area(*a).total_cmp(&area(*b)).then(b.cmp(a))
+        })
+        .unwrap_or(0);
+    let first = loops.remove(outer);
+    loops.insert(0, first);
+    let mean = |lp: &FaceLoop| {
+        let n = lp.edges.iter().map(|e| e.uv.len()).sum::<usize>().max(1) as f64;
+        let s = lp
+            .edges
+            .iter()
+            .flat_map(|e| &e.uv)
+            .fold([0.0; 2], |s, q| [s[0] + q[0], s[1] + q[1]]);
+        [s[0] / n, s[1] / n]
+    };
+    let m0 = mean(&loops[0]);
+    for lp in loops.iter_mut().skip(1) {
+        let m = mean(lp);
+        for d in 0..2 {
+            if let Some(t) = lp.periods[d].filter(|t| *t > 0.0) {
+                let shift = t * ((m0[d] - m[d]) / t).round();
+                lp.edges
+                    .iter_mut()
+                    .flat_map(|e| e.uv.iter_mut())
+                    .for_each(|q| q[d] += shift);
+            }
+        }
+    }
+    loops[0].metric_scale()
+}
+
+/// `uv` shifted by whole periods to lie nearest `near`.
+fn unwrap(mut uv: [f64; 2], near: [f64; 2], periods: [Option<f64>; 2]) -> [f64; 2] {
+    for d in 0..2 {
+        if let Some(t) = periods[d].filter(|t| *t > 0.0) {
+            uv[d] += t * ((near[d] - uv[d]) / t).round();
+        }
+    }
+    uv
+}
+
+/// A block's (u, v) made continuous around its boundary (on a periodic surface its sides
+/// may come a period apart), and the block mirrored (E1 ↔ E2, E3 and E4 reversed) unless it
+/// runs counterclockwise in (u, v) exactly when `orientation` (the face's normal is the
+/// surface's).
+fn orient(
+    points: &mut [Vec<Vec3>; 4],
+    uv: &mut [Vec<[f64; 2]>; 4],
+    periods: [Option<f64>; 2],
+    scale: [f64; 2],
+    orientation: bool,
+) {
+    let (ni, nj) = (uv[2].len(), uv[0].len());
+    let walk: Vec<(usize, usize)> = (0..ni)
+        .map(|k| (2, k))
+        .chain((0..nj).map(|k| (1, k)))
+        .chain((0..ni).rev().map(|k| (3, k)))
+        .chain((0..nj).rev().map(|k| (0, k)))
+        .collect();
+    let mut prev = uv[2][0];
+    let mut area = 0.0;
+    for &(e, k) in &walk {
+        let q = unwrap(uv[e][k], prev, periods);
+        uv[e][k] = q;
+        area += (prev[0] * q[1] - q[0] * prev[1]) * scale[0] * scale[1];
+        prev = q;
+    }
+    if (area > 0.0) != orientation {
+        points.swap(0, 1);
+        uv.swap(0, 1);
+        for e in [2, 3] {
+            points[e].reverse();
+            uv[e].reverse();
+        }
+    }
 }
 
 /// A side's samples with its end nodes replaced by the corners `a`, `b` (one value for every

@@ -46,6 +46,8 @@ pub(super) struct FaceLoop<'a> {
     tol: f64,
     /// Mean |x_u|, |x_v| over the samples ([`FaceLoop::metric_scale`]).
     scale: [f64; 2],
+    /// (u, v) at the loop's end less at its start, if the loop winds around the surface.
+    pub winding: Option<[f64; 2]>,
 }
 
 /// Shifts periodic parameters of `uv` by whole periods to lie nearest `near`.
@@ -61,7 +63,8 @@ fn unwrap(mut uv: [f64; 2], near: [f64; 2], periods: [Option<f64>; 2]) -> [f64; 
 impl<'a> FaceLoop<'a> {
     /// Samples the loop's edges and finds their (u, v) on `surface`; `bounds` is the box
     /// the projection may move in. A boundary point farther than `tol_rel` times the loop's
-    /// size from the surface is an error.
+    /// size from the surface is an error; so is a loop that winds around the surface unless
+    /// `winding` (then [`FaceLoop::winding`] says by how much).
     ///
     /// # Errors
     /// The reason, naming the edge (1-based in loop order): unbounded or degenerate edges,
@@ -71,6 +74,7 @@ impl<'a> FaceLoop<'a> {
         edges: &[LoopEdge],
         bounds: [[f64; 2]; 2],
         tol_rel: f64,
+        winding: bool,
     ) -> Result<FaceLoop<'a>, String> {
         if edges.is_empty() {
             return Err("the boundary loop has no edges".into());
@@ -116,6 +120,7 @@ impl<'a> FaceLoop<'a> {
             gap: 0.0,
             tol: tol_rel * size,
             scale: [1.0; 2],
+            winding: None,
         };
         let n = curves.len();
         for k in 0..n {
@@ -141,12 +146,15 @@ impl<'a> FaceLoop<'a> {
             lp.edges.push(LoopCurve { curve, map, uv });
         }
         lp.scale = lp.mean_speeds();
-        // Closure: back at the start in (u, v), not a period away.
+        // Closure: back at the start in (u, v), not a period away (unless `winding`).
         let scale = lp.scale;
         let miss = (0..2)
             .map(|c| ((prev[c] - first[c]) * scale[c]).abs())
             .fold(0.0, f64::max);
         if miss > 1e-3 * size.max(f64::MIN_POSITIVE) {
+            lp.winding = Some([0, 1].map(|c| prev[c] - first[c]));
+        }
+        if lp.winding.is_some() && !winding {
             return Err(
                 "the boundary loop winds around the surface (a closed band without a seam edge, \
                  or a cap around a pole): not one block face"

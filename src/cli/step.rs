@@ -119,9 +119,9 @@ fn list(file: &Path) -> Result<()> {
                 if n == 1 { "" } else { "s" }
             ),
             Route::Holes(n) => format!(
-                "{} block faces: an O-type ring of 4 blocks around each of {n} hole{}",
-                4 * n,
-                if n == 1 { "" } else { "s" }
+                "{} boundary loops, gridded as several blocks: an O-type ring of 4 around each \
+                 hole, or 4 across a closed band",
+                n + 1
             ),
             Route::Refused(why) => format!("not gridable: {why}"),
         };
