@@ -28,7 +28,8 @@ enum StepCommand {
         file: PathBuf,
     },
     /// Grid faces of a STEP file as four-sided block faces by the Section 4 pipeline: any face
-    /// bounded by one loop of edges, on any surface type.
+    /// bounded by one loop of edges, on any surface type; a face with holes as an O-type ring
+    /// of four blocks around each hole, a closed band without a seam edge as four blocks.
     Grid(GridArgs),
     /// Write a surface block of a Plot3D file, taken as a Hermite control net, as a bicubic
     /// B-spline face in a STEP file.
@@ -82,7 +83,7 @@ struct GridArgs {
     #[arg(long, default_value = "direct")]
     linear: String,
     /// Output file(s): .x/.xyz/.p3d/.g (Plot3D), .vts, .vtm, .glb, .gltf, .obj; one block
-    /// per face, named `faceN`.
+    /// per face, named `faceN` (`faceN.b0`, `faceN.b1`, … for a face of several blocks).
     #[arg(short, long = "output", value_name = "OUT", required = true)]
     output: Vec<PathBuf>,
     /// Write the grid even if it folds (the exit code is still 3).
