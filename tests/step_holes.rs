@@ -341,3 +341,38 @@ fn step_grid_face_with_a_hole_writes_its_four_blocks() {
         assert!((d - 0.01).abs() < 1e-6, "first spacing at the hole {d}");
     }
 }
+
+#[test]
+fn holes_that_no_straight_cut_separates_are_refused_with_the_reason_and_no_output() {
+    // plane_holes_overlapping.step: two holes whose u ranges and v ranges both overlap.
+    let faces = read_step_faces(&file("plane_holes_overlapping.step")).unwrap();
+    let d = DistributionSpec::Uniform {};
+    let e = grid_face_blocks(&faces[0], (9, 9), &d, &d, &mut DirectLu::new(), "f")
+        .expect_err("refused");
+    assert!(
+        e.to_string()
+            .contains("no straight (u, v) cut separates them"),
+        "{e}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let step = file("plane_holes_overlapping.step");
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step",
+            "grid",
+            step.to_str().unwrap(),
+            "--face",
+            "1",
+            "-o",
+            "h.x",
+        ],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("face 1: the holes overlap in both parameter directions"),
+        "{t}"
+    );
+    assert!(!dir.path().join("h.x").exists());
+}

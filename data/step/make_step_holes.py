@@ -1,5 +1,6 @@
-"""Writes data/step/tube_with_holes.step: a cylinder face with two holes, for the tests of
-faces with holes (tests/step_holes.rs). OpenCascade through cadquery-ocp 8.0.1.1.0, the writer
+"""Writes data/step/tube_with_holes.step (a cylinder face with two holes) and
+data/step/plane_holes_overlapping.step (a plane face whose two holes no straight u or v cut
+separates), for the tests of faces with holes (tests/step_holes.rs). OpenCascade through cadquery-ocp 8.0.1.1.0, the writer
 settings of make_step_faces.py (AP214, millimetres, pcurves kept).
 
 A solid cylinder r = 2 about z, 0 <= z <= 4, drilled through along y by a cylinder r = 0.5 at
@@ -7,6 +8,10 @@ z = 2: the lateral face keeps its seam (at theta = 0) and gets two holes, at the
 270 degrees, bounded by the intersection curves (written as B-splines). Area of the lateral
 face: 2 pi 2 4 - 2 A, with A = integral over |sin t| <= 1/4 of 2 R sqrt(r^2 - R^2 sin^2 t) dt
 (R = 2, r = 0.5), printed with OCC's area of the face.
+
+plane_holes_overlapping.step: the rectangle [0,4]x[0,3] in z = 0 with holes r = 0.8 at
+(1.2, 1.1) and (2.6, 1.9): their x ranges [0.4, 2.0], [1.8, 3.4] and y ranges [0.3, 1.9],
+[1.1, 2.7] overlap, so the face must be refused with the reason; area 12 - 1.28 pi.
 
 Usage: PYTHONPATH=<dir with OCP> python3 make_step_holes.py data/step
 """
@@ -22,11 +27,12 @@ from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
 from OCP.GProp import GProp_GProps
 from OCP.GeomAdaptor import GeomAdaptor_Surface
 from OCP.BRep import BRep_Tool
-from OCP.GeomAbs import GeomAbs_Cylinder
+from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
 from OCP.TopAbs import TopAbs_FACE, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_step_faces as m  # noqa: E402  (write_step, read_step)
@@ -79,6 +85,25 @@ def main(out):
             found += 1
         ex.Next()
     assert found == 1
+
+    # The plate face with two holes that overlap in x and in y.
+    plate = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, -1), 4, 3, 1).Shape()
+    for cx, cy in [(1.2, 1.1), (2.6, 1.9)]:
+        hole = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(cx, cy, -2), gp_Dir(0, 0, 1)), 0.8, 3)
+        plate = BRepAlgoAPI_Cut(plate, hole.Shape()).Shape()
+    ex = TopExp_Explorer(plate, TopAbs_FACE)
+    top = None
+    while ex.More():
+        f = TopoDS.Face(ex.Current())
+        s = GeomAdaptor_Surface(BRep_Tool.Surface_s(f))
+        if s.GetType() == GeomAbs_Plane and abs(s.Plane().Location().Z()) < 1e-12:
+            top = f
+        ex.Next()
+    assert top is not None and BRepCheck_Analyzer(top).IsValid()
+    m.write_step(top, "plane_holes_overlapping.step")
+    props = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(top, props)
+    print(f"overlapping holes: area OCC {props.Mass():.10f}, exact {12 - 1.28 * math.pi:.10f}")
 
 
 if __name__ == "__main__":
