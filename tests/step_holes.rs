@@ -192,6 +192,21 @@ fn a_plane_face_with_one_hole_is_a_ring_of_four_fold_free_blocks() {
 }
 
 #[test]
+fn an_annulus_between_two_one_edge_circles_is_a_ring() {
+    // washer.step: both loops are one closed circle edge; the rays from the hole's centre to
+    // the outer loop's corners meet the hole where its polygon closes.
+    let known = Known {
+        surface: &|x| (x[2] - 1.0).abs(),
+        normal: &|_| [0.0, 0.0, 1.0],
+        holes: &[&circle([0.0, 0.0], 1.0)],
+        hole_tol: 1e-11,
+        area: 3.0 * PI,
+        seam: &|_| false,
+    };
+    check_face("washer.step", 1, &known);
+}
+
+#[test]
 fn the_plates_faces_with_two_holes_are_two_rings_and_converge_in_area() {
     let faces = read_step_faces(&file("plate_with_holes.step")).unwrap();
     let holes: Vec<usize> = faces

@@ -1,6 +1,6 @@
 """Writes data/step/tube_with_holes.step (a cylinder face with two holes) and
 data/step/plane_holes_overlapping.step (a plane face whose two holes no straight u or v cut
-separates), for the tests of faces with holes (tests/step_holes.rs). OpenCascade through cadquery-ocp 8.0.1.1.0, the writer
+separates) and data/step/washer.step (an annulus: two one-edge circles), for the tests of faces with holes (tests/step_holes.rs). OpenCascade through cadquery-ocp 8.0.1.1.0, the writer
 settings of make_step_faces.py (AP214, millimetres, pcurves kept).
 
 A solid cylinder r = 2 about z, 0 <= z <= 4, drilled through along y by a cylinder r = 0.5 at
@@ -12,6 +12,11 @@ face: 2 pi 2 4 - 2 A, with A = integral over |sin t| <= 1/4 of 2 R sqrt(r^2 - R^
 plane_holes_overlapping.step: the rectangle [0,4]x[0,3] in z = 0 with holes r = 0.8 at
 (1.2, 1.1) and (2.6, 1.9): their x ranges [0.4, 2.0], [1.8, 3.4] and y ranges [0.3, 1.9],
 [1.1, 2.7] overlap, so the face must be refused with the reason; area 12 - 1.28 pi.
+
+washer.step: the top face (z = 1) of a cylinder r = 2, 0 <= z <= 1, bored through by a
+cylinder r = 1 about the same axis: an annulus bounded by two circles of one edge each (the
+rays from the hole's centre to the outer loop's corners meet the hole at its vertex); area
+3 pi.
 
 Usage: PYTHONPATH=<dir with OCP> python3 make_step_holes.py data/step
 """
@@ -104,6 +109,25 @@ def main(out):
     props = GProp_GProps()
     BRepGProp.SurfaceProperties_s(top, props)
     print(f"overlapping holes: area OCC {props.Mass():.10f}, exact {12 - 1.28 * math.pi:.10f}")
+
+    # The washer: an annulus between two one-edge circles.
+    tube = BRepAlgoAPI_Cut(
+        BRepPrimAPI_MakeCylinder(2.0, 1.0).Shape(),
+        BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 1.0, 3).Shape(),
+    ).Shape()
+    ex = TopExp_Explorer(tube, TopAbs_FACE)
+    washer = None
+    while ex.More():
+        f = TopoDS.Face(ex.Current())
+        s = GeomAdaptor_Surface(BRep_Tool.Surface_s(f))
+        if s.GetType() == GeomAbs_Plane and abs(s.Plane().Location().Z() - 1.0) < 1e-12:
+            washer = f
+        ex.Next()
+    assert washer is not None and BRepCheck_Analyzer(washer).IsValid()
+    m.write_step(washer, "washer.step")
+    props = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(washer, props)
+    print(f"washer: area OCC {props.Mass():.10f}, exact {3 * math.pi:.10f}")
 
 
 if __name__ == "__main__":

@@ -138,10 +138,12 @@ pub(super) fn locate(
     f: impl Fn([f64; 2]) -> f64,
 ) -> Result<LoopPoint, String> {
     let p = poly[k].0;
-    let s1 = if poly[(k + 1) % poly.len()].0.edge == p.edge {
-        poly[(k + 1) % poly.len()].0.sigma
-    } else {
-        1.0
+    // The segment ends at the next sample of the same edge, else at the edge's end (also
+    // where the polygon closes on a loop of one edge).
+    let next = poly.get(k + 1).map(|q| q.0);
+    let s1 = match next {
+        Some(q) if q.edge == p.edge => q.sigma,
+        _ => 1.0,
     };
     let (mut lo, mut hi) = (p.sigma, s1);
     let f0 = f(poly[k].1);
