@@ -26,12 +26,15 @@ use ellipgrid_geometry::{Surface, TruckSurface, Vec3};
 type Sampled = (Vec<Vec3>, Vec<[f64; 2]>);
 
 /// The grids of a face, one per block: one block for a face of one loop ([`super::grid_face`]),
-/// four around each hole for a face with holes (module docs), in the order of the holes,
-/// each ring's blocks counterclockwise from the strip's first side.
+/// four around each hole for a face with holes, in the order of the holes, each ring's blocks
+/// one after the other around the hole; four across a closed band without a seam edge.
+/// Blocks run counterclockwise in (u, v) when the face's normal is the surface's, so that
+/// every block's normal is the face's.
 ///
 /// # Errors
 /// Those of [`super::grid_face`]; [`Error::Input`] at `place` with the reason if a face with
-/// holes cannot be split (see [`super::holes`]).
+/// holes cannot be split: holes that no straight u or v cut separates, a cut crossing the
+/// outer loop more than twice, a hole not star-shaped about its centroid, a band with holes.
 pub fn grid_face_blocks(
     face: &StepFace,
     (ni, nj): (usize, usize),
