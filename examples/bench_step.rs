@@ -14,7 +14,7 @@
 //! `--only NAME` runs the files whose name contains NAME; `--show REASON` prints the file and
 //! face number of every face whose outcome contains REASON (e.g. `--show "(u, v)"`).
 
-use ellipgrid::cad::{grid_face, read_step_faces, Route};
+use ellipgrid::cad::{grid_face_blocks, read_step_faces, Route};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::quality;
 use ellipgrid::quality::quality3d::AnyQuality;
@@ -52,7 +52,8 @@ fn class(m: &str) -> String {
     out.chars().take(110).collect()
 }
 
-type Faces = Vec<(usize, &'static str, Outcome)>;
+/// (face number, surface type, outcome, whether the face has holes).
+type Faces = Vec<(usize, &'static str, Outcome, bool)>;
 
 fn grid_file(path: PathBuf, n: usize) -> Result<Faces, String> {
     let faces = read_step_faces(&path).map_err(|e| e.to_string())?;
@@ -64,10 +65,13 @@ fn grid_file(path: PathBuf, n: usize) -> Result<Faces, String> {
                 Route::Refused(why) => Outcome::Refused(why),
                 _ => {
                     let mut solver = ellipgrid::solve::select::by_name("direct").unwrap();
-                    match grid_face(f, (n, n), &d, &d, solver.as_mut(), "") {
-                        Ok(g) => {
-                            let q = AnyQuality::from(quality::quality_surface(&g.result.grid));
-                            if q.is_folded() {
+                    match grid_face_blocks(f, (n, n), &d, &d, solver.as_mut(), "") {
+                        Ok(gs) => {
+                            let folded = gs.iter().any(|g| {
+                                AnyQuality::from(quality::quality_surface(&g.result.grid))
+                                    .is_folded()
+                            });
+                            if folded {
                                 Outcome::Folded
                             } else {
                                 Outcome::Ok
@@ -77,7 +81,12 @@ fn grid_file(path: PathBuf, n: usize) -> Result<Faces, String> {
                     }
                 }
             };
-            (f.index, f.surface_type, o)
+            (
+                f.index,
+                f.surface_type,
+                o,
+                matches!(f.route(), Route::Holes(_)),
+            )
         })
         .collect())
 }
@@ -116,6 +125,8 @@ fn main() {
     let mut by_system: BTreeMap<String, [usize; 3]> = BTreeMap::new();
     let mut by_type: BTreeMap<&str, [usize; 3]> = BTreeMap::new();
     let mut reasons: BTreeMap<String, usize> = BTreeMap::new();
+    // Faces with holes (several loops): how many, how many gridded fold-free.
+    let mut with_holes = [0usize; 2];
     let (mut all, mut ok_all, mut slowest) = (0, 0, (0.0, String::new()));
     println!("{n} × {n} nodes per face, time limit {timeout} s per file\n");
     println!(
@@ -163,7 +174,11 @@ fn main() {
         let s = by_system.entry(system).or_default();
         s[0] += faces.len();
         s[1] += ok;
-        for (index, ty, o) in &faces {
+        for (index, ty, o, holes) in &faces {
+            if *holes {
+                with_holes[0] += 1;
+                with_holes[1] += usize::from(matches!(o, Outcome::Ok));
+            }
             let t = by_type.entry(ty).or_default();
             t[0] += 1;
             if matches!(o, Outcome::Ok) {
@@ -190,6 +205,10 @@ fn main() {
         pct(ok_all, all),
         slowest.0,
         slowest.1
+    );
+    println!(
+        "faces with holes (several loops): {} of {} gridded fold-free",
+        with_holes[1], with_holes[0]
     );
     println!("\nby CAD system:");
     for (s, c) in &by_system {

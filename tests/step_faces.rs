@@ -5,7 +5,7 @@
 
 mod common;
 use common::{ellipgrid, root, text};
-use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid, Route};
+use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Grid2;
 use ellipgrid::quality;
@@ -245,77 +245,6 @@ fn a_reentrant_vertex_is_never_a_corner() {
 fn a_concave_trim_is_gridded_without_folds() {
     let exact = 2.98074213;
     converges("plane_nonconvex.step", exact, |p| p[2].abs());
-}
-
-#[test]
-fn faces_with_holes_are_refused_and_the_rest_of_the_part_is_gridded() {
-    let faces = read_step_faces(&file("plate_with_holes.step")).unwrap();
-    assert_eq!(faces.len(), 9);
-    let refused: Vec<usize> = faces
-        .iter()
-        .filter(|f| matches!(f.route(), Route::Refused(_)))
-        .map(|f| f.index)
-        .collect();
-    assert_eq!(refused, [2, 5]);
-    let types: Vec<&str> = faces.iter().map(|f| f.surface_type).collect();
-    assert_eq!(types.iter().filter(|t| **t == "cylinder").count(), 3);
-    // Through the CLI: seven faces written, the two with holes named, exit code 2.
-    let dir = tempfile::tempdir().unwrap();
-    let step = file("plate_with_holes.step");
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            step.to_str().unwrap(),
-            "--all",
-            "--ni",
-            "9",
-            "--nj",
-            "9",
-            "-o",
-            "plate.x",
-        ],
-    );
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(2), "{t}");
-    assert!(t.contains("face 2: 3 boundary loops (holes)"), "{t}");
-    assert!(t.contains("7 of 9 faces gridded and written"), "{t}");
-    let written = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("plate.x")).unwrap();
-    assert_eq!(written.blocks.len(), 7);
-    // `step list` says how each face is gridded.
-    let o = ellipgrid(dir.path(), &["step", "list", step.to_str().unwrap()]);
-    let t = text(&o);
-    assert!(o.status.success(), "{t}");
-    assert!(
-        t.contains("face 3: cylinder, block face: one loop of 4 edges"),
-        "{t}"
-    );
-    assert!(
-        t.contains("face 5: plane, not gridable: 3 boundary loops"),
-        "{t}"
-    );
-}
-
-#[test]
-fn a_face_with_a_hole_alone_exits_2_without_output() {
-    let dir = tempfile::tempdir().unwrap();
-    let step = file("box_with_hole_face.step");
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            step.to_str().unwrap(),
-            "--face",
-            "1",
-            "-o",
-            "h.x",
-        ],
-    );
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("holes"));
-    assert!(!dir.path().join("h.x").exists());
 }
 
 #[test]

@@ -148,7 +148,8 @@ pub fn vtk(data: &[u8]) {
     let _ = ellipgrid::io::vtk_read::vts_from_bytes(data, Path::new("fuzz.vts"));
 }
 
-/// Target `step`: a STEP file listed, and its first gridable face gridded at 5 × 5.
+/// Target `step`: a STEP file listed, and its first gridable face gridded at 5 × 5 (a face
+/// with holes or a seamless band as its blocks).
 pub fn step(data: &[u8]) {
     init();
     let Ok(text) = std::str::from_utf8(data) else {
@@ -169,7 +170,7 @@ pub fn step(data: &[u8]) {
         let Ok(mut solver) = ellipgrid::solve::select::by_name("direct") else {
             continue;
         };
-        let _ = cad::grid_face(f, (5, 5), &uniform, &uniform, solver.as_mut(), "fuzz");
+        let _ = cad::grid_face_blocks(f, (5, 5), &uniform, &uniform, solver.as_mut(), "fuzz");
     }
 }
 

@@ -70,6 +70,13 @@ pub fn grid_face(
     }
     match face.route() {
         Route::Refused(why) => Err(Error::input(place, why)),
+        Route::Holes(n) => Err(Error::input(
+            place,
+            format!(
+                "{n} hole(s): a face with holes is gridded as several blocks \
+                 (grid_face_blocks)"
+            ),
+        )),
         Route::Patch => {
             let s = face
                 .surface
@@ -90,7 +97,7 @@ pub fn grid_face(
 /// The parameter box of a face's projection: truck's range for B-spline and NURBS
 /// surfaces, unbounded for the others (their ranges in truck are those of the generating
 /// curve segment, not of the surface).
-fn bounds(s: &CadSurface) -> [[f64; 2]; 2] {
+pub(super) fn bounds(s: &CadSurface) -> [[f64; 2]; 2] {
     match s.0 {
         StepSurface::BSplineSurface(_) | StepSurface::NurbsSurface(_) => s.bounds(),
         _ => [[f64::NEG_INFINITY, f64::INFINITY]; 2],
@@ -241,7 +248,7 @@ fn boundary(
     place: &str,
 ) -> Result<FaceBoundary> {
     let err = |m: String| Error::input(place, m);
-    let mut lp = FaceLoop::new(surface, edges, bounds(surface), GAP_TOL).map_err(err)?;
+    let mut lp = FaceLoop::new(surface, edges, bounds(surface), GAP_TOL, false).map_err(err)?;
     let (c, angles) = lp.corners(min_turn);
     let scale = lp.metric_scale();
     let forward = (lp.signed_area(scale) > 0.0) == orientation;

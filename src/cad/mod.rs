@@ -9,6 +9,9 @@
 //! | `patch` | untrimmed four-sided B-spline/NURBS faces: the check, [`grid_patch`] |
 //! | `trim` | a face's boundary loop on its surface: (u, v) by projection, corners, four sides |
 //! | `face` | [`grid_face`]: any one-loop face as a block face (Section 2 in (u, v), then Section 4) |
+//! | `holes` | a face with holes split into blocks: one-hole strips, an O-type ring of four around each hole |
+//! | `band` | a closed band without a seam edge (two winding loops) split into four blocks |
+//! | `split` | [`grid_face_blocks`]: any face as one block or several (cuts shared bit for bit) |
 //! | `write` | [`write_step_surface`]: one B-spline face bounded by its four iso-parameter sides |
 //! | `prescan` | bounds on the STEP text before truck-stepio expands it |
 //!
@@ -23,23 +26,32 @@
 //!   parametrization from the unit square, then the Section 4 pipeline on top, so that the
 //!   grid depends on neither parametrization.
 //!
-//! Faces with holes (several loops), without a boundary or whose loop winds around the
-//! surface (a closed band without seam) are refused with the reason.
+//! - a face of several loops ([`Route::Holes`]) is split into four-sided blocks, each gridded
+//!   as a block face ([`grid_face_blocks`]): an O-type ring of four blocks around each hole
+//!   (the face first cut into one-hole strips between holes), or four blocks across a closed
+//!   band without a seam edge (two loops winding around a periodic surface).
+//!
+//! Faces without a boundary, whose one loop winds around the surface (a cap around a pole),
+//! or that cannot be split into blocks are refused with the reason.
 //!
 //! Limits of truck-stepio 0.3 that show here: faces whose surface or edges it cannot convert
 //! are skipped (it prints a line to stderr) and so get no number; its writer prints numbers
 //! below 10⁻² in magnitude with 11 significant digits (absolute error below 5·10⁻¹⁴), larger
 //! ones exactly; a face with `same_sense = .F.` is read with u and v swapped.
 
+mod band;
 mod edge;
 mod face;
+mod holes;
 mod patch;
 mod prescan;
+mod split;
 mod trim;
 mod write;
 
 pub use face::{grid_face, FaceGrid};
 pub use patch::grid_patch;
+pub use split::grid_face_blocks;
 pub use write::write_step_surface;
 
 use crate::{Error, Result};
@@ -75,6 +87,9 @@ pub enum Route {
     Patch,
     /// One boundary loop of this many edges, gridded as a block face ([`grid_face`]).
     Trimmed(usize),
+    /// An outer loop and this many holes, gridded as several blocks: an O-type ring of four
+    /// around each hole ([`grid_face_blocks`]).
+    Holes(usize),
     /// Not gridable, with the reason.
     Refused(String),
 }
@@ -115,10 +130,7 @@ impl StepFace {
         match &self.loops {
             Err(e) => Route::Refused(e.clone()),
             Ok(l) if l.is_empty() => Route::Refused("no boundary loop".into()),
-            Ok(l) if l.len() > 1 => Route::Refused(format!(
-                "{} boundary loops (holes): a face with holes is not one block face",
-                l.len()
-            )),
+            Ok(l) if l.len() > 1 => Route::Holes(l.len() - 1),
             Ok(l) => Route::Trimmed(l[0].len()),
         }
     }

@@ -15,16 +15,16 @@ use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 pub(super) type CadSurface = TruckSurface<StepSurface>;
 
 /// Samples per edge of the loop polygon in (u, v) (hints, orientation, closure).
-const NS: usize = 32;
+pub(super) const NS: usize = 32;
 /// An edge shorter than this fraction of the loop is degenerate (a pole or collapsed side).
 const DEGENERATE: f64 = 1e-9;
 
 /// One oriented edge of the loop with its arclength table and its (u, v) samples.
-struct LoopCurve {
+pub(super) struct LoopCurve {
     curve: TruckCurve<Curve3D>,
     map: ArclengthMap,
     /// (u, v) at the normalized arclengths k / NS, k = 0..=NS.
-    uv: Vec<[f64; 2]>,
+    pub uv: Vec<[f64; 2]>,
 }
 
 /// A point of the loop: edge `edge` at normalized arclength `sigma` of that edge.
@@ -38,14 +38,16 @@ pub(super) struct LoopPoint {
 pub(super) struct FaceLoop<'a> {
     surface: &'a CadSurface,
     bounds: [[f64; 2]; 2],
-    periods: [Option<f64>; 2],
-    edges: Vec<LoopCurve>,
+    pub periods: [Option<f64>; 2],
+    pub edges: Vec<LoopCurve>,
     /// Largest distance between a sampled boundary point and the surface.
     pub gap: f64,
     /// Distance beyond which a boundary point is "not on the surface".
     tol: f64,
     /// Mean |x_u|, |x_v| over the samples ([`FaceLoop::metric_scale`]).
     scale: [f64; 2],
+    /// (u, v) at the loop's end less at its start, if the loop winds around the surface.
+    pub winding: Option<[f64; 2]>,
 }
 
 /// Shifts periodic parameters of `uv` by whole periods to lie nearest `near`.
@@ -61,7 +63,8 @@ fn unwrap(mut uv: [f64; 2], near: [f64; 2], periods: [Option<f64>; 2]) -> [f64; 
 impl<'a> FaceLoop<'a> {
     /// Samples the loop's edges and finds their (u, v) on `surface`; `bounds` is the box
     /// the projection may move in. A boundary point farther than `tol_rel` times the loop's
-    /// size from the surface is an error.
+    /// size from the surface is an error; so is a loop that winds around the surface unless
+    /// `winding` (then [`FaceLoop::winding`] says by how much).
     ///
     /// # Errors
     /// The reason, naming the edge (1-based in loop order): unbounded or degenerate edges,
@@ -71,6 +74,7 @@ impl<'a> FaceLoop<'a> {
         edges: &[LoopEdge],
         bounds: [[f64; 2]; 2],
         tol_rel: f64,
+        winding: bool,
     ) -> Result<FaceLoop<'a>, String> {
         if edges.is_empty() {
             return Err("the boundary loop has no edges".into());
@@ -116,6 +120,7 @@ impl<'a> FaceLoop<'a> {
             gap: 0.0,
             tol: tol_rel * size,
             scale: [1.0; 2],
+            winding: None,
         };
         let n = curves.len();
         for k in 0..n {
@@ -141,12 +146,15 @@ impl<'a> FaceLoop<'a> {
             lp.edges.push(LoopCurve { curve, map, uv });
         }
         lp.scale = lp.mean_speeds();
-        // Closure: back at the start in (u, v), not a period away.
+        // Closure: back at the start in (u, v), not a period away (unless `winding`).
         let scale = lp.scale;
         let miss = (0..2)
             .map(|c| ((prev[c] - first[c]) * scale[c]).abs())
             .fold(0.0, f64::max);
         if miss > 1e-3 * size.max(f64::MIN_POSITIVE) {
+            lp.winding = Some([0, 1].map(|c| prev[c] - first[c]));
+        }
+        if lp.winding.is_some() && !winding {
             return Err(
                 "the boundary loop winds around the surface (a closed band without a seam edge, \
                  or a cap around a pole): not one block face"
@@ -236,7 +244,7 @@ impl<'a> FaceLoop<'a> {
     }
 
     /// Length of edge `k`.
-    fn length(&self, k: usize) -> f64 {
+    pub fn length(&self, k: usize) -> f64 {
         self.edges[k].map.length()
     }
 
@@ -285,7 +293,7 @@ impl<'a> FaceLoop<'a> {
     }
 
     /// Turning angle (radians, 0 = straight on) of the loop at the start of edge `k`.
-    fn turning(&self, k: usize) -> f64 {
+    pub fn turning(&self, k: usize) -> f64 {
         let n = self.len();
         let a = &self.edges[(k + n - 1) % n].curve;
         let b = &self.edges[k].curve;
@@ -301,7 +309,7 @@ impl<'a> FaceLoop<'a> {
     /// Whether the loop turns outwards (a reentrant, concave vertex) at the start of edge
     /// `k`: the turn in (u, v) against the loop's sense of rotation, from the chords of the
     /// (u, v) samples next to the vertex (`ccw`: the loop runs counterclockwise in (u, v)).
-    fn reentrant(&self, k: usize, ccw: bool) -> bool {
+    pub fn reentrant(&self, k: usize, ccw: bool) -> bool {
         let n = self.len();
         let (a, b) = (&self.edges[(k + n - 1) % n].uv, &self.edges[k].uv);
         let s = self.scale;
@@ -427,7 +435,7 @@ impl<'a> FaceLoop<'a> {
     }
 
     /// The loop point `s` (arclength) forwards from `a`.
-    fn advance(&self, a: LoopPoint, mut s: f64) -> LoopPoint {
+    pub fn advance(&self, a: LoopPoint, mut s: f64) -> LoopPoint {
         let n = self.len();
         let mut p = a;
         for _ in 0..=n {

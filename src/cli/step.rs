@@ -28,7 +28,8 @@ enum StepCommand {
         file: PathBuf,
     },
     /// Grid faces of a STEP file as four-sided block faces by the Section 4 pipeline: any face
-    /// bounded by one loop of edges, on any surface type.
+    /// bounded by one loop of edges, on any surface type; a face with holes as an O-type ring
+    /// of four blocks around each hole, a closed band without a seam edge as four blocks.
     Grid(GridArgs),
     /// Write a surface block of a Plot3D file, taken as a Hermite control net, as a bicubic
     /// B-spline face in a STEP file.
@@ -82,7 +83,7 @@ struct GridArgs {
     #[arg(long, default_value = "direct")]
     linear: String,
     /// Output file(s): .x/.xyz/.p3d/.g (Plot3D), .vts, .vtm, .glb, .gltf, .obj; one block
-    /// per face, named `faceN`.
+    /// per face, named `faceN` (`faceN.b0`, `faceN.b1`, … for a face of several blocks).
     #[arg(short, long = "output", value_name = "OUT", required = true)]
     output: Vec<PathBuf>,
     /// Write the grid even if it folds (the exit code is still 3).
@@ -117,6 +118,11 @@ fn list(file: &Path) -> Result<()> {
             Route::Trimmed(n) => format!(
                 "block face: one loop of {n} edge{}",
                 if n == 1 { "" } else { "s" }
+            ),
+            Route::Holes(n) => format!(
+                "{} boundary loops, gridded as several blocks: an O-type ring of 4 around each \
+                 hole, or 4 across a closed band",
+                n + 1
             ),
             Route::Refused(why) => format!("not gridable: {why}"),
         };
@@ -156,25 +162,31 @@ fn grid(a: &GridArgs) -> Result<()> {
     let mut budget = ellipgrid::case::limits::Budget::default();
     for f in &chosen {
         let at = format!("{name}: face {} (--ni, --nj)", f.index);
-        budget.add_solved(
-            &at,
-            &[a.ni, a.nj],
-            ellipgrid::case::limits::BYTES_PER_NODE_2D,
-            &a.linear,
-        )?;
+        let blocks = match f.route() {
+            Route::Holes(n) => 4 * n,
+            _ => 1,
+        };
+        for _ in 0..blocks {
+            budget.add_solved(
+                &at,
+                &[a.ni, a.nj],
+                ellipgrid::case::limits::BYTES_PER_NODE_2D,
+                &a.linear,
+            )?;
+        }
     }
     budget.check_memory(&format!("{name} (--ni, --nj)"))?;
     let (di, dj) = (spacing(a.first_i, a.last_i), spacing(a.first_j, a.last_j));
     solve::select::by_name(&a.linear).map_err(|m| Error::input("--linear", m))?;
     // Every face on its own (in parallel): one face's failure does not lose the others.
-    let results: Vec<(&StepFace, Result<cad::FaceGrid>)> = chosen
+    let results: Vec<(&StepFace, Result<Vec<cad::FaceGrid>>)> = chosen
         .par_iter()
         .map(|f| {
             let place = format!("{name}: face {}", f.index);
             let r = solve::select::by_name(&a.linear)
                 .map_err(|m| Error::input("--linear", m))
                 .and_then(|mut solver| {
-                    cad::grid_face(f, (a.ni, a.nj), &di, &dj, solver.as_mut(), &place)
+                    cad::grid_face_blocks(f, (a.ni, a.nj), &di, &dj, solver.as_mut(), &place)
                 });
             (*f, r)
         })
@@ -183,9 +195,10 @@ fn grid(a: &GridArgs) -> Result<()> {
     let mut fold: Option<Error> = None;
     let (mut failed, mut folded) = (Vec::new(), Vec::new());
     let mut folded_cells = 0;
+    let mut written_faces = 0;
     for (f, r) in results {
         let place = format!("{name}: face {}", f.index);
-        let g = match r {
+        let grids = match r {
             Ok(g) => g,
             Err(e) => {
                 if a.face.is_some() {
@@ -196,46 +209,58 @@ fn grid(a: &GridArgs) -> Result<()> {
                 continue;
             }
         };
-        let q = quality::quality_surface(&g.result.grid);
-        if !a.quiet {
-            println!(
-                "face {} ({}, {} × {} nodes):",
-                f.index, f.surface_type, a.ni, a.nj
-            );
-            if !g.corner_angles.is_empty() {
-                let angles: Vec<String> =
-                    g.corner_angles.iter().map(|d| format!("{d:.0}°")).collect();
-                println!(
-                    "  corners turning {}; boundary within {:.1e} of the surface",
-                    angles.join(", "),
-                    g.gap
-                );
-            }
-            println!("{q}");
-        }
-        let q = AnyQuality::from(q);
-        if q.is_folded() {
-            let e = Error::Folded {
-                place,
-                count: q.folded_cells(),
-                first: q.folded_list(),
+        // A face of several blocks (holes) is written, or left out, as a whole.
+        let several = grids.len() > 1;
+        let mut face_blocks = Vec::with_capacity(grids.len());
+        let mut face_folded = false;
+        for (b, g) in grids.into_iter().enumerate() {
+            let (place, block) = if several {
+                (
+                    format!("{place}, block {b}"),
+                    format!("face{}.b{b}", f.index),
+                )
+            } else {
+                (place.clone(), format!("face{}", f.index))
             };
-            folded.push(f.index);
-            folded_cells += q.folded_cells();
-            if !a.allow_folded {
+            let q = quality::quality_surface(&g.result.grid);
+            if !a.quiet {
+                println!("{block} ({}, {} × {} nodes):", f.surface_type, a.ni, a.nj);
+                if !g.corner_angles.is_empty() {
+                    let angles: Vec<String> =
+                        g.corner_angles.iter().map(|d| format!("{d:.0}°")).collect();
+                    println!(
+                        "  corners turning {}; boundary within {:.1e} of the surface",
+                        angles.join(", "),
+                        g.gap
+                    );
+                }
+                println!("{q}");
+            }
+            let q = AnyQuality::from(q);
+            if q.is_folded() {
+                let e = Error::Folded {
+                    place,
+                    count: q.folded_cells(),
+                    first: q.folded_list(),
+                };
+                face_folded = true;
+                folded_cells += q.folded_cells();
                 // With --all the face is left out; the others are still written.
-                if a.face.is_none() {
+                if !a.allow_folded && a.face.is_none() {
                     eprintln!("not written: {e}");
                 }
                 fold.get_or_insert(e);
-                if a.face.is_none() {
-                    continue;
-                }
-            } else {
-                fold.get_or_insert(e);
+            }
+            face_blocks.push((block, Block::Surface(g.result.grid)));
+        }
+        if face_folded {
+            folded.push(f.index);
+            if !a.allow_folded && a.face.is_none() {
+                continue;
             }
         }
-        blocks.push((format!("face{}", f.index), Block::Surface(g.result.grid)));
+        blocks.extend(face_blocks);
+        written_faces += 1;
     }
     let write = a.face.is_none() || fold.is_none() || a.allow_folded;
     if blocks.is_empty() {
@@ -261,7 +286,7 @@ fn grid(a: &GridArgs) -> Result<()> {
             count: folded_cells,
             first: format!(
                 "faces {folded:?} (of {total}; {} written{})",
-                blocks.len(),
+                written_faces,
                 if failed.is_empty() {
                     String::new()
                 } else {
@@ -275,7 +300,7 @@ fn grid(a: &GridArgs) -> Result<()> {
             name,
             format!(
                 "{} of {total} faces gridded and written; not gridded: faces {failed:?} (reasons above)",
-                blocks.len(),
+                written_faces,
             ),
         ));
     }
