@@ -6,8 +6,7 @@ Usage: check_meshes.py ELLIPGRID WORK GRID.x[:CONN] ...
 For every grid (with its .conn, if any) it writes an OpenFOAM polyMesh (ASCII and binary), an
 SU2 mesh and a Gmsh MSH 4.1 file with `ellipgrid convert`, then
   - runs OpenFOAM's checkMesh: every topology check must pass, and the mesh must be
-    "Mesh OK." or fail only the high-aspect-ratio check (Navier-Stokes grids with wall
-    spacings of 1e-5 chord have in-plane aspect ratios of thousands by design; reported);
+    "Mesh OK." or fail only the checks ALLOWED names for that example, with the reason;
     the binary polyMesh must give checkMesh the same cells, points, patches and verdict;
   - reads the SU2 and Gmsh files with meshio, and the Gmsh file with the gmsh package: the
     same number of nodes and cells as the polyMesh (the 2D ones: half its points), every
@@ -18,9 +17,10 @@ SU2 mesh and a Gmsh MSH 4.1 file with `ellipgrid convert`, then
     node onto a node of the donor zone with the same coordinates.
 Surface grids (not volumes, not planar) give only the Gmsh and CGNS files.
 For the airfoil C-grid (rae2822_cgrid) it also writes the runnable OpenFOAM case
-(`convert grid.x DIR/rae.foam`) and runs it: checkMesh, potentialFoam, then simpleFoam for
-FOAM_ITERATIONS iterations; both solvers must end without error and the residuals must fall
-(the first and last initial residuals of Ux and p). Exit 1 on any failure.
+(`convert grid.x DIR/rae.foam`) and runs it: checkMesh ("Mesh OK."), then simpleFoam from
+the uniform free stream for FOAM_ITERATIONS iterations; it must end without error and the
+initial residuals of Ux, Uy and p must fall by the factors FOAM_FALLS asks. Exit 1 on any
+failure.
 """
 import os
 import re
@@ -52,13 +52,24 @@ def case_dir(path):
             f.write(CONTROL % name + body)
 
 
-# Checks that may fail, beyond the aspect ratio, with the reason.
+# Wall spacings of 1e-5 chord carried along a flat wall or a wake give in-plane aspect ratios
+# (OpenFOAM's: the ratio of the Cartesian extents) of thousands: allowed where the case design
+# still has them (README, "Solver meshes"). rae2822_cgrid's wake grows its normal spacing
+# downstream and passes ("Mesh OK.").
+HIGH_ASPECT = "***High aspect ratio cells found"
+
+# Checks that may fail, with the reason.
 ALLOWED = {
-    # The one C-O block of the M6 tip has, by design, cells with three coplanar edges along
-    # the flat edge E7 in the wing plane beyond the tip (README "Volume blocks"; the lower
-    # block of the 3D multi-block issue completes them): OpenFOAM's face skewness is large
-    # there (176 faces at z = 0, y = 1.196...1.201).
-    "wing_m6_co": ["***Max skewness"],
+    # Flat wall of 1e-5 spacing over the whole channel floor (max 2326).
+    "airfoil_wall": [HIGH_ASPECT],
+    # Thin wake blocks behind the blunt trailing edges (max 3142).
+    "nlr7301_flap": [HIGH_ASPECT],
+    # The one C-O block of the M6 tip, F6 (the wing plane beyond the tip) a boundary patch:
+    # next to the tip's leading and trailing edges the section thickness goes to zero, so
+    # the grid lines reach F6 nearly in its plane and its boundary faces are skewed (166
+    # faces, i <= 3 and i >= 59, max 43; README "Volume blocks"). Wall cells of 1e-5 chord
+    # at the tip give the aspect ratio (max 2035).
+    "wing_m6_co": ["***Max skewness", HIGH_ASPECT],
 }
 
 
@@ -74,7 +85,7 @@ def check_mesh(case, name):
             problems.append("missing '" + check + "'")
     if "Mesh OK." not in out:
         flagged = [l.strip() for l in out.splitlines() if l.strip().startswith("***")]
-        allowed = ALLOWED.get(name, []) + ["***High aspect ratio cells found"]
+        allowed = ALLOWED.get(name, [])
         failed = re.search(r"Failed (\d+) mesh checks", out)
         if not failed or int(failed.group(1)) != len(flagged) or any(
                 not any(l.startswith(a) for a in allowed) for l in flagged):
@@ -152,9 +163,11 @@ def check_cgns(exe, grid, extra, work, name):
     return problems, len(zones), n1to1
 
 
-# The example whose OpenFOAM case is run, and for how many simpleFoam iterations.
+# The example whose OpenFOAM case is run, for how many simpleFoam iterations, and how far
+# the first initial residual of each field must fall by then.
 FOAM_CASE_EXAMPLE = "rae2822_cgrid"
-FOAM_ITERATIONS = 30
+FOAM_ITERATIONS = 200
+FOAM_FALLS = (("Ux", 3000.0), ("Uy", 300.0), ("p", 3000.0))
 
 
 def foam(case, command):
@@ -176,29 +189,29 @@ def residuals(log, field):
 
 
 def run_case(exe, grid, extra, work, name):
-    """Writes the runnable OpenFOAM case of a grid and runs potentialFoam and a few simpleFoam
-    iterations: both must end, and the residuals of Ux and p must fall."""
+    """Writes the runnable OpenFOAM case of a grid and runs simpleFoam for FOAM_ITERATIONS
+    iterations: it must end, and the residuals must fall by FOAM_FALLS."""
     case = os.path.join(work, name + "_case")
     subprocess.run([exe, "convert", "-q", grid, os.path.join(case, name + ".foam")] + extra,
                    check=True)
     control = os.path.join(case, "system", "controlDict")
     text = re.sub(r"(?m)^endTime\s.*$", f"endTime         {FOAM_ITERATIONS};", open(control).read())
     open(control, "w").write(text)
-    problems, _, _, _, _ = check_mesh(case, name)
+    problems, _, _, _, verdict = check_mesh(case, name)
+    if verdict != "Mesh OK":
+        problems.append(f"checkMesh on the case: {verdict}")
     out = []
-    for command in ("potentialFoam", "simpleFoam"):
-        code, log = foam(case, command)
-        if code != 0 or "\nEnd" not in log or "FOAM FATAL" in log or "nan" in log.lower():
-            problems.append(f"{command} failed (exit {code}):\n" + log[-2000:])
-            break
-        if command == "simpleFoam":
-            for field, fall in (("Ux", 20.0), ("p", 10.0)):
-                r = residuals(log, field)
-                if len(r) < FOAM_ITERATIONS or not r[-1] * fall < r[0]:
-                    problems.append(f"simpleFoam: {field} residuals do not fall {fall}x: "
-                                    f"{r[:1]} ... {r[-1:]} ({len(r)} solves)")
-                out.append(f"{field} {r[0]:.3g} -> {r[-1]:.3g}")
-    print(f"{name}: OpenFOAM case: potentialFoam and {FOAM_ITERATIONS} simpleFoam iterations: "
+    code, log = foam(case, "simpleFoam")
+    if code != 0 or "\nEnd" not in log or "FOAM FATAL" in log or "nan" in log.lower():
+        problems.append(f"simpleFoam failed (exit {code}):\n" + log[-2000:])
+    else:
+        for field, fall in FOAM_FALLS:
+            r = residuals(log, field)
+            if len(r) < FOAM_ITERATIONS or not r[-1] * fall < r[0]:
+                problems.append(f"simpleFoam: {field} residuals do not fall {fall:g}x: "
+                                f"{r[:1]} ... {r[-1:]} ({len(r)} solves)")
+            out.append(f"{field} {r[0]:.3g} -> {r[-1]:.3g}")
+    print(f"{name}: OpenFOAM case: {FOAM_ITERATIONS} simpleFoam iterations: "
           f"{'ok' if not problems else 'FAILED'}; initial residuals {', '.join(out)}")
     for p in problems:
         print("   ", p)

@@ -2,8 +2,9 @@
 //! and the `system/`, `constant/` and `0/` files of a steady incompressible case, with the
 //! boundary conditions of each family's kind. Known answers: the patches of `0/U` and `0/p`
 //! are the polyMesh's, each with the condition of its kind; the polyMesh is byte for byte the
-//! one a `polyMesh` output writes; a family without a kind is refused with nothing written.
-//! (`.ci/check_meshes.py` runs OpenFOAM's checkMesh, potentialFoam and simpleFoam on the
+//! one a `polyMesh` output writes; a family without a kind is refused with nothing written;
+//! the flow of `[flow]` and of `convert`'s flags is the one written into `0/U` and `nu`, and
+//! bad flow values exit 2 naming the key, with nothing written. (`.ci/check_meshes.py` runs OpenFOAM's checkMesh and 200 simpleFoam iterations on the
 //! shipped airfoil C-grid's case.)
 
 mod common;
@@ -270,4 +271,136 @@ fn walk(dir: &Path) -> Vec<std::path::PathBuf> {
         }
     }
     out
+}
+
+/// The text of a case file in `dir`.
+fn read(dir: &Path, file: &str) -> String {
+    std::fs::read_to_string(dir.join(file)).unwrap()
+}
+
+#[test]
+fn the_flow_options_are_written_into_u_the_far_field_and_nu() {
+    let d = tempfile::tempdir().unwrap();
+    // The C-grid with a [flow] table: 4 degrees, speed 2, Reynolds number 500 on a length
+    // of 0.5: nu = 2 * 0.5 / 500 = 2e-3.
+    let toml = std::fs::read_to_string(root().join("examples/rae2822_cgrid.toml"))
+        .unwrap()
+        .replace(
+            "../data/rae2822.dat",
+            root().join("data/rae2822.dat").to_str().unwrap(),
+        )
+        + "\n[flow]\nspeed = 2\nalpha = 4\nreynolds = 500\nlength = 0.5\n";
+    std::fs::write(d.path().join("c.toml"), &toml).unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "run", "-q", "c.toml", "-o", "a/c.foam", "-o", "c.x", "-o", "c.conn",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let a = 4f64.to_radians();
+    let u = format!("uniform ({} {} 0)", 2.0 * a.cos(), 2.0 * a.sin());
+    let dir = d.path().join("a");
+    assert!(read(&dir, "0/U").contains(&format!("internalField   {u};")));
+    let bcs = boundary_field(&dir.join("0/U"));
+    assert_eq!(
+        bcs[1],
+        (
+            "farfield".to_string(),
+            format!("type freestreamVelocity; freestreamValue {u};")
+        )
+    );
+    assert!(bcs[2].1.ends_with(&format!("value {u};")), "{}", bcs[2].1);
+    assert!(read(&dir, "constant/transportProperties").contains("nu              2e-3;"));
+    // The same flow by convert's flags, with nu given directly: the same files.
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "convert", "-q", "c.x", "b/c.foam", "--speed", "2", "--alpha", "4", "--nu", "2e-3",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    for f in CASE_FILES {
+        assert_eq!(read(&dir, f), read(&d.path().join("b"), f), "{f}");
+    }
+    // A negative angle (the flag takes negative numbers) and the default viscosity.
+    let o = ellipgrid(
+        d.path(),
+        &["convert", "-q", "c.x", "n/c.foam", "--alpha", "-2.5"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let a = (-2.5f64).to_radians();
+    assert!(read(&d.path().join("n"), "0/U").contains(&format!(
+        "internalField   uniform ({} {} 0);",
+        a.cos(),
+        a.sin()
+    )));
+    assert!(read(&d.path().join("n"), "constant/transportProperties").contains("1e-3;"));
+}
+
+#[test]
+fn bad_flow_values_exit_2_naming_the_key_and_write_nothing() {
+    let d = tempfile::tempdir().unwrap();
+    let ex = root().join("examples/rae2822_cgrid.toml");
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "run",
+            "-q",
+            ex.to_str().unwrap(),
+            "-o",
+            "c.x",
+            "-o",
+            "c.conn",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    for (args, key) in [
+        (&["--alpha", "95"][..], "--alpha = 95"),
+        (&["--alpha", "NaN"][..], "--alpha = NaN"),
+        (&["--speed", "-1"][..], "--speed = -1"),
+        (&["--nu", "0"][..], "--nu = 0"),
+        (&["--reynolds", "inf"][..], "--reynolds = inf"),
+        (&["--length", "2"][..], "--length = 2"),
+        (
+            &["--nu", "1e-3", "--reynolds", "100"][..],
+            "--nu and --reynolds",
+        ),
+        // a planar grid's flow lies in its plane
+        (&["--sideslip", "3"][..], "sideslip = 3"),
+    ] {
+        let mut a = vec!["convert", "c.x", "bad/c.foam"];
+        a.extend_from_slice(args);
+        let o = ellipgrid(d.path(), &a);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
+        assert!(text(&o).contains(key), "{args:?}: {}", text(&o));
+        assert!(!d.path().join("bad").exists(), "{args:?}: files written");
+    }
+    // Flow flags on another output are refused.
+    let o = ellipgrid(d.path(), &["convert", "c.x", "c.su2", "--alpha", "2"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("--alpha"), "{}", text(&o));
+    // In a case file: the table and the key are named; unknown keys are refused.
+    let toml = std::fs::read_to_string(&ex).unwrap().replace(
+        "../data/rae2822.dat",
+        root().join("data/rae2822.dat").to_str().unwrap(),
+    );
+    for (flow, key) in [
+        ("alpha = -120", "alpha = -120"),
+        ("nu = -1e-3", "nu = -0.001"),
+        ("mach = 0.5", "mach"),
+    ] {
+        std::fs::write(d.path().join("f.toml"), format!("{toml}\n[flow]\n{flow}\n")).unwrap();
+        let o = ellipgrid(
+            d.path(),
+            &["run", "f.toml", "-o", "out/c.foam", "-o", "f.x"],
+        );
+        assert_eq!(o.status.code(), Some(2), "{flow}: {}", text(&o));
+        assert!(
+            text(&o).contains(key) && text(&o).contains("f.toml"),
+            "{flow}: {}",
+            text(&o)
+        );
+        assert!(!d.path().join("out").exists() && !d.path().join("f.x").exists());
+    }
 }

@@ -283,9 +283,9 @@ fn c_grid_to_openfoam_su2_and_gmsh_through_the_cli() {
     let nodes: usize = grid.blocks.iter().map(|b| b.nnodes()).sum();
     // 4 blocks; merged: every interface node once (the wake cut, the three cuts).
     let (pts, ncells, boundary) = check_polymesh(&d.path().join("case/constant/polyMesh"));
-    assert_eq!(ncells, 2 * 128 * 80 + 2 * 48 * 80);
-    assert_eq!(pts.len(), 2 * 28544);
-    assert!(nodes > 28544);
+    assert_eq!(ncells, 2 * 128 * 80 + 2 * 96 * 80);
+    assert_eq!(pts.len(), 2 * 36272);
+    assert!(nodes > 36272);
     for (name, t) in [
         ("airfoil", "wall"),
         ("farfield", "patch"),
@@ -310,8 +310,8 @@ fn c_grid_to_openfoam_su2_and_gmsh_through_the_cli() {
     set.clear();
 
     let su2 = std::fs::read_to_string(d.path().join("c.su2")).unwrap();
-    assert!(su2.contains("NDIME= 2\nNELEM= 28160\n"));
-    assert!(su2.contains("NPOIN= 28544\n"));
+    assert!(su2.contains("NDIME= 2\nNELEM= 35840\n"));
+    assert!(su2.contains("NPOIN= 36272\n"));
     assert!(su2.contains("MARKER_TAG= airfoil\nMARKER_ELEMS= 256\n"));
     assert!(su2.contains("MARKER_TAG= outflow\nMARKER_ELEMS= 160\n"));
     let msh = std::fs::read_to_string(d.path().join("c.msh")).unwrap();
@@ -324,8 +324,8 @@ fn c_grid_to_openfoam_su2_and_gmsh_through_the_cli() {
         assert!(msh.contains(n), "{n}");
     }
     // nodes classified by entity: 3 families, then 4 blocks; the closed airfoil's 256 first
-    assert!(msh.contains("$Nodes\n7 28544 1 28544\n1 1 0 256\n"));
-    assert!(msh.contains("\n2 4 0 3713\n"), "block4's own nodes");
+    assert!(msh.contains("$Nodes\n7 36272 1 36272\n1 1 0 256\n"));
+    assert!(msh.contains("\n2 4 0 7505\n"), "block4's own nodes");
 }
 
 #[test]

@@ -20,6 +20,9 @@ pub struct Case {
     /// Solver options shared by all blocks.
     #[serde(default)]
     pub solver: SolverSpec,
+    /// The free stream of a runnable OpenFOAM case (`DIR/NAME.foam` outputs).
+    #[serde(default)]
+    pub flow: FlowSpec,
     /// The blocks, written in this order.
     #[serde(rename = "block", default)]
     pub blocks: Vec<BlockSpec>,
@@ -62,6 +65,26 @@ pub struct OutputSpec {
     pub span: Option<f64>,
     /// OpenFOAM meshes in "ascii" (default) or "binary".
     pub foam_format: Option<String>,
+}
+
+/// `[flow]`: the free stream of a runnable OpenFOAM case (checked by
+/// [`crate::io::foam_case::Flow::from_input`]; every key optional).
+#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FlowSpec {
+    /// Free-stream speed (default 1).
+    pub speed: Option<f64>,
+    /// Angle of attack in degrees (default 0): in the x–y plane of planar grids, the x–z
+    /// plane of volumes.
+    pub alpha: Option<f64>,
+    /// Sideslip in degrees, towards +y (volume grids; default 0).
+    pub sideslip: Option<f64>,
+    /// Kinematic viscosity (default 1e-3), or else:
+    pub nu: Option<f64>,
+    /// the Reynolds number `speed * length / nu`,
+    pub reynolds: Option<f64>,
+    /// with the reference length (default 1).
+    pub length: Option<f64>,
 }
 
 /// `[solver]`: options of the elliptic solve.

@@ -4,6 +4,7 @@
 use clap::Args;
 use ellipgrid::case::LoadedCase;
 use ellipgrid::io::connectivity::ConnFile;
+use ellipgrid::io::foam_case::{Flow, FlowInput};
 use ellipgrid::io::gltf::{self, GltfOptions};
 use ellipgrid::io::patches::CellMetric;
 use ellipgrid::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
@@ -71,6 +72,25 @@ pub struct ConvertArgs {
     /// OpenFOAM output: "ascii" (default) or "binary" (raw numbers: smaller, faster).
     #[arg(long, value_name = "F")]
     foam_format: Option<String>,
+    /// OpenFOAM case (DIR/NAME.foam): the free-stream speed. Default: 1.
+    #[arg(long, value_name = "V", allow_negative_numbers = true)]
+    speed: Option<f64>,
+    /// OpenFOAM case: the angle of attack in degrees (in the x–y plane of a planar grid, the
+    /// x–z plane of a volume grid). Default: 0.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    alpha: Option<f64>,
+    /// OpenFOAM case of a volume grid: the sideslip in degrees (towards +y). Default: 0.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    sideslip: Option<f64>,
+    /// OpenFOAM case: the kinematic viscosity. Default: 1e-3 (or from --reynolds).
+    #[arg(long, value_name = "NU", allow_negative_numbers = true)]
+    nu: Option<f64>,
+    /// OpenFOAM case: the Reynolds number speed × length / ν, instead of --nu.
+    #[arg(long, value_name = "RE", allow_negative_numbers = true)]
+    reynolds: Option<f64>,
+    /// OpenFOAM case: the reference length of --reynolds. Default: 1.
+    #[arg(long, value_name = "L", allow_negative_numbers = true)]
+    length: Option<f64>,
     /// Print only errors.
     #[arg(short, long)]
     quiet: bool,
@@ -215,6 +235,22 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
     if let Some(f) = &a.foam_format {
         mesh = mesh.with_foam_format(f, "--foam-format")?;
     }
+    let flow = FlowInput {
+        speed: a.speed,
+        alpha: a.alpha,
+        sideslip: a.sideslip,
+        nu: a.nu,
+        reynolds: a.reynolds,
+        length: a.length,
+    };
+    if flow != FlowInput::default() && kind != OutputKind::FoamCase {
+        return Err(Error::input(
+            a.output.display().to_string(),
+            "--speed, --alpha, --sideslip, --nu, --reynolds and --length set the flow of an \
+             OpenFOAM case (DIR/NAME.foam)",
+        ));
+    }
+    mesh.flow = Flow::from_input(&flow, "convert", |k| format!("--{k}"))?;
     let options = plot3d_options_given(a);
     if options && kind != OutputKind::Plot3d {
         return Err(Error::input(

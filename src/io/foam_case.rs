@@ -1,12 +1,16 @@
 //! A runnable OpenFOAM case (#19 "Beyond"): the mesh ([`crate::io::foam`]) in
 //! `constant/polyMesh`, plus the minimal `system/` and `0/` files of a steady incompressible
-//! external flow (`simpleFoam`, laminar; `potentialFoam` initializes it), for OpenFOAM v1912
-//! (Debian's `openfoam`). The boundary conditions come from each family's kind
-//! ([`BcKind`]): walls no-slip, far field free-stream, inflow fixed velocity, outflow fixed
-//! pressure, symmetry planes symmetric, the extrusion's front and back empty. The case is
-//! named by its `.foam` file (`DIR/NAME.foam`, empty: what ParaView opens); the case files go
-//! into `DIR`. The free stream is [`FREESTREAM`] along x, the kinematic viscosity [`NU`]:
-//! edit `0/U` and `constant/transportProperties` for other flows.
+//! external flow (`simpleFoam`, laminar, consistent SIMPLE, started from the uniform free
+//! stream), for OpenFOAM v1912 (Debian's `openfoam`). The boundary conditions come from each
+//! family's kind ([`BcKind`]): walls no-slip, far field free-stream, inflow fixed velocity,
+//! outflow fixed pressure, symmetry planes symmetric, the extrusion's front and back empty.
+//! The case is named by its `.foam` file (`DIR/NAME.foam`, empty: what ParaView opens); the
+//! case files go into `DIR`. The free stream (speed, angle of attack, sideslip) and the
+//! kinematic viscosity are a [`Flow`] (`[flow]` in a case file, flags of `convert`).
+//!
+//! No `potentialFoam` start: the potential flow about a sharp trailing edge has no Kutta
+//! condition and leaves a jet through the trailing edge that the viscous iteration removes
+//! only very slowly in the wall-resolved cells there (README, "OpenFOAM case").
 
 use crate::io::foam::{patch_name, write_polymesh_as};
 use crate::io::mesh::{BcKind, Mesh};
@@ -14,12 +18,132 @@ use crate::io::{staged, write_atomic};
 use crate::{Error, Result};
 use std::path::{Path, PathBuf};
 
-/// The free-stream velocity of the case, (x, y, z) (the unit speed along x).
-pub const FREESTREAM: [f64; 3] = [1.0, 0.0, 0.0];
+/// The free stream and viscosity of a case. The velocity is `speed` along the direction of
+/// the angle of attack `alpha_deg`, in the x–y plane of a planar grid and in the x–z plane of
+/// a volume grid, turned out of that plane towards +y by the sideslip `sideslip_deg`
+/// (volumes only): `speed (cos α, sin α, 0)` planar, `speed (cos α cos β, sin β, sin α cos β)`
+/// in 3D. The default is the unit speed along x and `nu` = 1e-3: Reynolds number 1000 per
+/// unit length (laminar and steady about a unit-chord airfoil).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Flow {
+    /// Free-stream speed (> 0).
+    pub speed: f64,
+    /// Angle of attack, degrees (|α| < 90).
+    pub alpha_deg: f64,
+    /// Sideslip, degrees (|β| < 90; volume grids only).
+    pub sideslip_deg: f64,
+    /// Kinematic viscosity (> 0).
+    pub nu: f64,
+}
 
-/// The kinematic viscosity of the case: Reynolds number 1000 per unit length at the free
-/// stream [`FREESTREAM`] (laminar and steady about a unit-chord airfoil).
-pub const NU: f64 = 1e-3;
+impl Default for Flow {
+    fn default() -> Self {
+        Flow {
+            speed: 1.0,
+            alpha_deg: 0.0,
+            sideslip_deg: 0.0,
+            nu: 1e-3,
+        }
+    }
+}
+
+/// The flow as given (a case file's `[flow]`, `convert`'s flags): every value optional; `nu`
+/// or else `reynolds` (with the reference `length`, default 1) sets the viscosity.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FlowInput {
+    /// Free-stream speed.
+    pub speed: Option<f64>,
+    /// Angle of attack, degrees.
+    pub alpha: Option<f64>,
+    /// Sideslip, degrees.
+    pub sideslip: Option<f64>,
+    /// Kinematic viscosity.
+    pub nu: Option<f64>,
+    /// Reynolds number `speed * length / nu`.
+    pub reynolds: Option<f64>,
+    /// Reference length of `reynolds`.
+    pub length: Option<f64>,
+}
+
+impl Flow {
+    /// The flow `input` asks for, checked: speed, viscosity, Reynolds number and length
+    /// finite and > 0, angles finite and within ±90°, `nu` and `reynolds` not both, `length`
+    /// only with `reynolds`. `place` names where the values were given and `key` spells a
+    /// key's name there (`alpha` in a case file, `--alpha` on the command line).
+    ///
+    /// # Errors
+    /// [`Error::Input`] naming `place` and the key of the first bad value.
+    pub fn from_input(
+        input: &FlowInput,
+        place: &str,
+        key: impl Fn(&str) -> String,
+    ) -> Result<Flow> {
+        let bad = |name: &str, v: f64, why: &str| {
+            Error::input(place, format!("{} = {v}: {why}", key(name)))
+        };
+        let positive = |name: &str, v: Option<f64>| match v {
+            Some(x) if !(x.is_finite() && x > 0.0) => Err(bad(name, x, "must be a number > 0")),
+            _ => Ok(v),
+        };
+        let angle = |name: &str, v: Option<f64>| match v {
+            Some(x) if !(x.is_finite() && x.abs() < 90.0) => Err(bad(
+                name,
+                x,
+                "must be an angle in degrees between -90 and 90 (the free stream enters \
+                 through the far field ahead)",
+            )),
+            _ => Ok(v.unwrap_or(0.0)),
+        };
+        let speed = positive("speed", input.speed)?.unwrap_or(1.0);
+        let alpha_deg = angle("alpha", input.alpha)?;
+        let sideslip_deg = angle("sideslip", input.sideslip)?;
+        let nu = positive("nu", input.nu)?;
+        let reynolds = positive("reynolds", input.reynolds)?;
+        let length = positive("length", input.length)?;
+        let nu = match (nu, reynolds, length) {
+            (Some(_), Some(_), _) => {
+                return Err(Error::input(
+                    place,
+                    format!(
+                        "{} and {} both set the viscosity: give one",
+                        key("nu"),
+                        key("reynolds")
+                    ),
+                ))
+            }
+            (_, None, Some(l)) => {
+                return Err(bad(
+                    "length",
+                    l,
+                    &format!(
+                        "the reference length of {}, which is not given",
+                        key("reynolds")
+                    ),
+                ))
+            }
+            (Some(nu), None, None) => nu,
+            (None, Some(re), l) => speed * l.unwrap_or(1.0) / re,
+            (None, None, _) => Flow::default().nu,
+        };
+        Ok(Flow {
+            speed,
+            alpha_deg,
+            sideslip_deg,
+            nu,
+        })
+    }
+
+    /// The free-stream velocity (x, y, z) of a planar grid (`planar`) or a volume grid.
+    pub fn velocity(&self, planar: bool) -> [f64; 3] {
+        let (a, b) = (self.alpha_deg.to_radians(), self.sideslip_deg.to_radians());
+        let v = self.speed;
+        if planar {
+            [v * a.cos(), v * a.sin(), 0.0]
+        } else {
+            [v * a.cos() * b.cos(), v * b.sin(), v * a.sin() * b.cos()]
+        }
+    }
+}
 
 /// The files of a case, relative to its directory, in the order [`write_case`] writes them
 /// after the polyMesh.
@@ -33,13 +157,10 @@ pub const CASE_FILES: [&str; 7] = [
     "0/p",
 ];
 
-/// The boundary conditions of U and p on a patch of kind `bc`, or `None` for a kind that
+/// The boundary conditions of U and p on a patch of kind `bc` with the free stream `u` (an
+/// OpenFOAM uniform vector), or `None` for a kind that
 /// says nothing about the flow (`general`).
-fn conditions(bc: BcKind) -> Option<(String, &'static str)> {
-    let u = format!(
-        "uniform ({} {} {})",
-        FREESTREAM[0], FREESTREAM[1], FREESTREAM[2]
-    );
+fn conditions(bc: BcKind, u: &str) -> Option<(String, &'static str)> {
     Some(match bc {
         BcKind::Wall => ("type noSlip;".into(), "type zeroGradient;"),
         BcKind::Farfield => (
@@ -83,32 +204,49 @@ interpolationSchemes\n{\n    default         linear;\n}\n\n\
 snGradSchemes\n{\n    default         limited corrected 0.33;\n}\n";
 
 const FV_SOLUTION: &str = "solvers\n{\n    p\n    {\n        solver          GAMG;\n        \
-smoother        GaussSeidel;\n        tolerance       1e-07;\n        relTol          0.05;\n    }\n\n    \
-Phi\n    {\n        $p;\n        relTol          0.01;\n    }\n\n    \
+smoother        GaussSeidel;\n        tolerance       1e-07;\n        relTol          0.01;\n    }\n\n    \
 U\n    {\n        solver          smoothSolver;\n        smoother        GaussSeidel;\n        \
 nSweeps         2;\n        tolerance       1e-08;\n        relTol          0.1;\n    }\n}\n\n\
-SIMPLE\n{\n    nNonOrthogonalCorrectors 2;\n    residualControl\n    {\n        \
-p               1e-6;\n        U               1e-7;\n    }\n}\n\n\
-potentialFlow\n{\n    nNonOrthogonalCorrectors 3;\n}\n\n\
-relaxationFactors\n{\n    fields\n    {\n        p               0.3;\n    }\n    equations\n    {\n        \
-U               0.5;\n    }\n}\n";
+SIMPLE\n{\n    consistent      yes;\n    nNonOrthogonalCorrectors 1;\n    residualControl\n    {\n        \
+p               1e-5;\n        U               2e-4;\n    }\n}\n\n\
+relaxationFactors\n{\n    fields\n    {\n        p               1;\n    }\n    equations\n    {\n        \
+U               0.7;\n    }\n}\n";
 
-/// Writes the case `case_file` (`DIR/NAME.foam`): the polyMesh of `mesh` (in OpenFOAM's
-/// `binary` format if asked) in `DIR/constant/polyMesh`, the dictionaries of
-/// [`CASE_FILES`] and the empty `NAME.foam`, all or none. Returns the files written.
+/// Writes the case `case_file` (`DIR/NAME.foam`) of the flow `flow`: the polyMesh of `mesh`
+/// (in OpenFOAM's `binary` format if asked) in `DIR/constant/polyMesh`, the dictionaries of
+/// [`CASE_FILES`] and the empty `NAME.foam`, all or none. A mesh with an `empty` family (a
+/// planar grid extruded) is planar: its flow lies in the x–y plane. Returns the files written.
 ///
 /// # Errors
 /// [`Error::Input`] naming the families whose kind is `general` (give them `bc = "wall"`,
 /// `"farfield"`, … in the case file or the `.conn` file: no flow condition can be guessed
-/// for them), and those of [`write_polymesh_as`].
-pub fn write_case(case_file: &Path, mesh: &Mesh, binary: bool) -> Result<Vec<PathBuf>> {
+/// for them), a sideslip on a planar grid, and those of [`write_polymesh_as`].
+pub fn write_case(
+    case_file: &Path,
+    mesh: &Mesh,
+    binary: bool,
+    flow: &Flow,
+) -> Result<Vec<PathBuf>> {
     let place = case_file.display().to_string();
+    let planar = mesh.bcs.iter().any(|b| matches!(b, BcKind::Empty));
+    if planar && flow.sideslip_deg != 0.0 {
+        return Err(Error::input(
+            place,
+            format!(
+                "sideslip = {}: a planar grid's flow lies in its plane; the sideslip turns \
+                 the flow of volume grids (use alpha)",
+                flow.sideslip_deg
+            ),
+        ));
+    }
+    let [ux, uy, uz] = flow.velocity(planar);
+    let u = format!("uniform ({ux} {uy} {uz})");
     let mut u_bcs = String::new();
     let mut p_bcs = String::new();
     let mut unknown = Vec::new();
     for (family, bc) in mesh.families.iter().zip(&mesh.bcs) {
         let name = patch_name(family);
-        match conditions(*bc) {
+        match conditions(*bc, &u) {
             Some((u, p)) => {
                 u_bcs.push_str(&format!("    {name}\n    {{\n        {u}\n    }}\n"));
                 p_bcs.push_str(&format!("    {name}\n    {{\n        {p}\n    }}\n"));
@@ -132,16 +270,13 @@ pub fn write_case(case_file: &Path, mesh: &Mesh, binary: bool) -> Result<Vec<Pat
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let u = format!(
-        "uniform ({} {} {})",
-        FREESTREAM[0], FREESTREAM[1], FREESTREAM[2]
-    );
+    let nu = flow.nu;
     let bodies = [
         header("dictionary", "system", "controlDict") + CONTROL_DICT,
         header("dictionary", "system", "fvSchemes") + FV_SCHEMES,
         header("dictionary", "system", "fvSolution") + FV_SOLUTION,
         header("dictionary", "constant", "transportProperties")
-            + &format!("transportModel  Newtonian;\n\nnu              {NU:e};\n"),
+            + &format!("transportModel  Newtonian;\n\nnu              {nu:e};\n"),
         header("dictionary", "constant", "turbulenceProperties") + "simulationType  laminar;\n",
         header("volVectorField", "0", "U")
             + &format!(
@@ -172,4 +307,45 @@ pub fn write_case(case_file: &Path, mesh: &Mesh, binary: bool) -> Result<Vec<Pat
         written.push(case_file.to_path_buf());
         Ok(written)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_velocity_turns_by_alpha_in_the_plane_and_by_the_sideslip_out_of_it() {
+        let f = |alpha_deg, sideslip_deg| Flow {
+            speed: 2.0,
+            alpha_deg,
+            sideslip_deg,
+            nu: 1e-3,
+        };
+        let close = |a: [f64; 3], b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-15);
+        let h = 3f64.sqrt();
+        assert_eq!(Flow::default().velocity(true), [1.0, 0.0, 0.0]);
+        assert!(close(f(30.0, 0.0).velocity(true), [h, 1.0, 0.0]));
+        assert!(close(f(30.0, 0.0).velocity(false), [h, 0.0, 1.0]));
+        assert!(close(f(0.0, 30.0).velocity(false), [h, 1.0, 0.0]));
+        assert!(close(f(60.0, 60.0).velocity(false), [0.5, h, 0.5 * h]));
+    }
+
+    #[test]
+    fn the_viscosity_comes_from_nu_or_the_reynolds_number() {
+        let key = |k: &str| k.to_string();
+        let input = |nu, reynolds, length| FlowInput {
+            speed: Some(3.0),
+            nu,
+            reynolds,
+            length,
+            ..FlowInput::default()
+        };
+        let nu = |i| Flow::from_input(&i, "here", key).unwrap().nu;
+        assert_eq!(nu(input(None, None, None)), 1e-3);
+        assert_eq!(nu(input(Some(0.25), None, None)), 0.25);
+        assert_eq!(nu(input(None, Some(300.0), None)), 0.01);
+        assert_eq!(nu(input(None, Some(300.0), Some(2.0))), 0.02);
+        let e = Flow::from_input(&input(None, None, Some(2.0)), "here", key).unwrap_err();
+        assert!(e.to_string().contains("length = 2"), "{e}");
+    }
 }

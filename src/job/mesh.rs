@@ -4,6 +4,7 @@
 use super::OutputKind;
 use crate::case::LoadedCase;
 use crate::io::connectivity::ConnFile;
+use crate::io::foam_case::{Flow, FlowInput};
 use crate::io::mesh::Mesh;
 use crate::io::Block;
 use crate::{Error, Result};
@@ -21,6 +22,8 @@ pub struct MeshOptions {
     pub span: f64,
     /// OpenFOAM's binary format instead of ASCII.
     pub foam_binary: bool,
+    /// The flow of a runnable OpenFOAM case (`DIR/NAME.foam`).
+    pub flow: Flow,
 }
 
 impl Default for MeshOptions {
@@ -28,6 +31,7 @@ impl Default for MeshOptions {
         MeshOptions {
             span: FOAM_SPAN,
             foam_binary: false,
+            flow: Flow::default(),
         }
     }
 }
@@ -74,11 +78,11 @@ impl MeshOptions {
     }
 }
 
-/// The solver-mesh options asked for by `[output]` (`span`, `foam_format`).
+/// The solver-mesh options asked for by `[output]` (`span`, `foam_format`) and `[flow]`.
 ///
 /// # Errors
 /// [`Error::Input`] naming the case's `[output]` for a span that is not > 0 or an unknown
-/// OpenFOAM format.
+/// OpenFOAM format, or its `[flow]` and the key of a bad flow value.
 pub fn mesh_options(case: &LoadedCase) -> Result<MeshOptions> {
     let place = format!("{}: [output]", case.path.display());
     let o = &case.case.output;
@@ -86,10 +90,24 @@ pub fn mesh_options(case: &LoadedCase) -> Result<MeshOptions> {
         Some(s) => MeshOptions::with_span(s, &place)?,
         None => MeshOptions::default(),
     };
-    match &o.foam_format {
-        Some(f) => m.with_foam_format(f, &place),
-        None => Ok(m),
-    }
+    let m = match &o.foam_format {
+        Some(f) => m.with_foam_format(f, &place)?,
+        None => m,
+    };
+    let f = &case.case.flow;
+    let input = FlowInput {
+        speed: f.speed,
+        alpha: f.alpha,
+        sideslip: f.sideslip,
+        nu: f.nu,
+        reynolds: f.reynolds,
+        length: f.length,
+    };
+    let place = format!("{}: [flow]", case.path.display());
+    Ok(MeshOptions {
+        flow: Flow::from_input(&input, &place, str::to_string)?,
+        ..m
+    })
 }
 
 /// Writes a CGNS file (the `cgns` feature), or says how to get one.
@@ -135,7 +153,7 @@ pub fn write_mesh(
         OutputKind::FoamCase => {
             let planar = blocks.iter().any(|(_, b)| matches!(b, Block::Planar(_)));
             let mesh = Mesh::build(&place, blocks, conn, planar.then_some(options.span))?;
-            crate::io::foam_case::write_case(path, &mesh, options.foam_binary)
+            crate::io::foam_case::write_case(path, &mesh, options.foam_binary, &options.flow)
         }
         OutputKind::Su2 => {
             crate::io::su2::write_su2(path, &Mesh::build(&place, blocks, conn, None)?)?;
