@@ -84,7 +84,7 @@ fn c_grid_round_trip_through_cgns_keeps_nodes_and_connectivity() {
         let o = ellipgrid(d.path(), args);
         assert!(o.status.success(), "{}", text(&o));
     }
-    assert!(text(&ellipgrid(d.path(), &["check", "c.cgns"])).contains("block 4 (49 × 81)"));
+    assert!(text(&ellipgrid(d.path(), &["check", "c.cgns"])).contains("block 4 (97 × 81)"));
     // A case written to CGNS directly: the block and family names of the case file.
     let (blocks, c) = read_cgns(&d.path().join("named.cgns")).unwrap();
     let names: Vec<&str> = blocks.iter().map(|b| b.0.as_str()).collect();
