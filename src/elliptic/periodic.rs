@@ -19,6 +19,7 @@ use crate::algebraic::control2d::Control2;
 use crate::algebraic::periodic::{close_seam, periodic_control_for, periodic_start};
 use crate::algebraic::ControlKind;
 use crate::elliptic::picard::{self, BlockResult, Nonlinear, PicardInfo, PicardParams};
+use crate::elliptic::poisson2d;
 use crate::grid::boundary::Boundary2;
 use crate::grid::{Edge, Grid2};
 use crate::solve::periodic9::{DirectLuPeriodic, Periodic9};
@@ -42,7 +43,6 @@ pub fn assemble<const D: usize>(
     a: &mut Periodic9,
     rhs: &mut [Vec<f64>; D],
 ) {
-    use crate::solve::stencil9::dir::*;
     let (ni, nj) = (x.ni(), x.nj());
     let nc = ni - 1;
     assert_eq!((a.nx(), a.ny()), (nc, nj - 2));
@@ -57,27 +57,7 @@ pub fn assemble<const D: usize>(
                 // east of column nc − 1 is column nc (= column 0), west of column 0 is nc − 1
                 let (e, w) = (n + 1, if i == 0 { nc - 1 + ni * j } else { n - 1 });
                 let (no, so) = (n + ni, n - ni);
-                let (mut g11, mut g12, mut g22) = (0.0, 0.0, 0.0);
-                for c in xs.iter() {
-                    let xi = 0.5 * (c[e] - c[w]);
-                    let eta = 0.5 * (c[no] - c[so]);
-                    g11 += xi * xi;
-                    g12 += xi * eta;
-                    g22 += eta * eta;
-                }
-                let (p, q, r) = (g22, -g12, g11);
-                let k = ctrl.at(n);
-                let sc = p * k[0] + 2.0 * q * k[2] + r * k[4];
-                let tc = p * k[1] + 2.0 * q * k[3] + r * k[5];
-                st[C] = 2.0 * (p + r);
-                st[E] = -(p + 0.5 * sc);
-                st[W] = -(p - 0.5 * sc);
-                st[N] = -(r + 0.5 * tc);
-                st[S] = -(r - 0.5 * tc);
-                st[NE] = -0.5 * q;
-                st[SW] = -0.5 * q;
-                st[NW] = 0.5 * q;
-                st[SE] = 0.5 * q;
+                *st = poisson2d::stencil_at(xs, ctrl.at(n), [e, w, no, so]);
             }
         });
     // E3 and E4 neighbours go to the right-hand side (first and last row of unknowns).

@@ -23,6 +23,41 @@ use crate::solve::{LinearSolver, SolveError};
 use crate::Result;
 use rayon::prelude::*;
 
+/// The frozen nine-point stencil of [43, 44] at a node whose east, west, north and south
+/// neighbours are `e, w, no, so` (flat indices into `xs`; a periodic block wraps e and w),
+/// with the node's six control-function terms `k`; the row multiplied by −1, so that the
+/// diagonal 2(P + R) is positive.
+#[inline]
+pub(crate) fn stencil_at<const D: usize>(
+    xs: &[Vec<f64>; D],
+    k: &[f64; 6],
+    [e, w, no, so]: [usize; 4],
+) -> [f64; 9] {
+    use crate::solve::stencil9::dir::*;
+    let (mut g11, mut g12, mut g22) = (0.0, 0.0, 0.0);
+    for c in xs.iter() {
+        let xi = 0.5 * (c[e] - c[w]);
+        let eta = 0.5 * (c[no] - c[so]);
+        g11 += xi * xi;
+        g12 += xi * eta;
+        g22 += eta * eta;
+    }
+    let (p, q, r) = (g22, -g12, g11);
+    let sc = p * k[0] + 2.0 * q * k[2] + r * k[4];
+    let tc = p * k[1] + 2.0 * q * k[3] + r * k[5];
+    let mut st = [0.0; 9];
+    st[C] = 2.0 * (p + r);
+    st[E] = -(p + 0.5 * sc);
+    st[W] = -(p - 0.5 * sc);
+    st[N] = -(r + 0.5 * tc);
+    st[S] = -(r - 0.5 * tc);
+    st[NE] = -0.5 * q;
+    st[SW] = -0.5 * q;
+    st[NW] = 0.5 * q;
+    st[SE] = 0.5 * q;
+    st
+}
+
 /// Assembles the frozen nine-point operator of [43, 44] at iterate `x` and the right-hand
 /// sides (one per coordinate) that carry the Dirichlet boundary values.
 ///
@@ -33,7 +68,6 @@ pub fn assemble<const D: usize>(
     a: &mut Stencil9,
     rhs: &mut [Vec<f64>; D],
 ) {
-    use crate::solve::stencil9::dir::*;
     let (ni, nj) = (x.ni(), x.nj());
     let (nx, ny) = (ni - 2, nj - 2);
     assert_eq!((a.nx(), a.ny()), (nx, ny));
@@ -46,27 +80,7 @@ pub fn assemble<const D: usize>(
             for (ii, st) in arow.iter_mut().enumerate() {
                 let n = ii + 1 + ni * j;
                 let (e, w, no, so) = (n + 1, n - 1, n + ni, n - ni);
-                let (mut g11, mut g12, mut g22) = (0.0, 0.0, 0.0);
-                for c in xs.iter() {
-                    let xi = 0.5 * (c[e] - c[w]);
-                    let eta = 0.5 * (c[no] - c[so]);
-                    g11 += xi * xi;
-                    g12 += xi * eta;
-                    g22 += eta * eta;
-                }
-                let (p, q, r) = (g22, -g12, g11);
-                let k = ctrl.at(n);
-                let sc = p * k[0] + 2.0 * q * k[2] + r * k[4];
-                let tc = p * k[1] + 2.0 * q * k[3] + r * k[5];
-                st[C] = 2.0 * (p + r);
-                st[E] = -(p + 0.5 * sc);
-                st[W] = -(p - 0.5 * sc);
-                st[N] = -(r + 0.5 * tc);
-                st[S] = -(r - 0.5 * tc);
-                st[NE] = -0.5 * q;
-                st[SW] = -0.5 * q;
-                st[NW] = 0.5 * q;
-                st[SE] = 0.5 * q;
+                *st = stencil_at(xs, ctrl.at(n), [e, w, no, so]);
             }
         });
     // Known boundary neighbours go to the right-hand side (rows next to the boundary only).
