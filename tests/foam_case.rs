@@ -323,6 +323,29 @@ fn the_flow_options_are_written_into_u_the_far_field_and_nu() {
     for f in CASE_FILES {
         assert_eq!(read(&dir, f), read(&d.path().join("b"), f), "{f}");
     }
+    // convert of the case file itself takes its [flow]: the same files as run wrote.
+    let o = ellipgrid(d.path(), &["convert", "-q", "c.toml", "t/c.foam"]);
+    assert!(o.status.success(), "{}", text(&o));
+    for f in CASE_FILES {
+        assert_eq!(read(&dir, f), read(&d.path().join("t"), f), "{f}");
+    }
+    // Flags win key by key: --alpha replaces 4 degrees, the speed and the Reynolds number
+    // stay the case's; --nu replaces the case's reynolds and length as one group.
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "convert", "-q", "c.toml", "f/c.foam", "--alpha", "1", "--nu", "5e-3",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let a = 1f64.to_radians();
+    let f = d.path().join("f");
+    assert!(read(&f, "0/U").contains(&format!(
+        "internalField   uniform ({} {} 0);",
+        2.0 * a.cos(),
+        2.0 * a.sin()
+    )));
+    assert!(read(&f, "constant/transportProperties").contains("nu              5e-3;"));
     // A negative angle (the flag takes negative numbers) and the default viscosity.
     let o = ellipgrid(
         d.path(),

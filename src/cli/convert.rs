@@ -72,7 +72,8 @@ pub struct ConvertArgs {
     /// OpenFOAM output: "ascii" (default) or "binary" (raw numbers: smaller, faster).
     #[arg(long, value_name = "F")]
     foam_format: Option<String>,
-    /// OpenFOAM case (DIR/NAME.foam): the free-stream speed. Default: 1.
+    /// OpenFOAM case (DIR/NAME.foam): the free-stream speed. Default: 1. The flow flags
+    /// (and --span, --foam-format) default to a case file input's `[flow]` (and `[output]`).
     #[arg(long, value_name = "V", allow_negative_numbers = true)]
     speed: Option<f64>,
     /// OpenFOAM case: the angle of attack in degrees (in the x–y plane of a planar grid, the
@@ -107,6 +108,9 @@ pub struct Loaded {
     pub conn: Option<ConnFile>,
     /// True for a case file (its topology gives the connectivity; `--conn` is refused).
     pub case: bool,
+    /// A case file's solver-mesh options (`[output] span`, `foam_format`, `[flow]`, checked)
+    /// and its `[flow]` as given: `convert`'s defaults, under its flags.
+    pub case_mesh: Option<(job::MeshOptions, FlowInput)>,
 }
 
 /// Reads a grid input: a case file (`.toml`, gridded now; a folded grid is an error unless
@@ -120,6 +124,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
         .unwrap_or_default();
     if ext == "toml" {
         let case = LoadedCase::read(path)?;
+        let case_mesh = Some((job::mesh_options(&case)?, job::flow_input(&case)));
         let gen = job::generate(&case, |b| {
             if !quiet {
                 println!("gridded block '{}' ({} × {})", b.name, b.ni, b.nj);
@@ -138,6 +143,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
             topology: gen.topology,
             conn: gen.connectivity,
             case: true,
+            case_mesh,
         });
     }
     if ext == "vts" || ext == "vtm" {
@@ -157,6 +163,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
             topology: None,
             conn: None,
             case: false,
+            case_mesh: None,
         });
     }
     if ext == "cgns" {
@@ -170,6 +177,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
                 topology: None,
                 conn: Some(conn),
                 case: false,
+                case_mesh: None,
             });
         }
         #[cfg(not(feature = "cgns"))]
@@ -196,6 +204,7 @@ pub fn load(path: &Path, allow_folded: bool, quiet: bool) -> Result<Loaded> {
         topology: None,
         conn: None,
         case: false,
+        case_mesh: None,
     })
 }
 
@@ -259,6 +268,17 @@ pub fn convert(a: &ConvertArgs) -> Result<()> {
         ));
     }
     let input = load(&a.input, false, a.quiet)?;
+    if let Some((case, case_flow)) = &input.case_mesh {
+        // A case file's [output] and [flow] are the defaults; the flags given win.
+        if a.span.is_none() {
+            mesh.span = case.span;
+        }
+        if a.foam_format.is_none() {
+            mesh.foam_binary = case.foam_binary;
+        }
+        let both = job::flow_over(case_flow, &flow);
+        mesh.flow = Flow::from_input(&both, "convert: [flow] and flags", str::to_string)?;
+    }
     let fmt = if options {
         Some(plot3d_format(a, input.format)?)
     } else {

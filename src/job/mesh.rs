@@ -94,20 +94,40 @@ pub fn mesh_options(case: &LoadedCase) -> Result<MeshOptions> {
         Some(f) => m.with_foam_format(f, &place)?,
         None => m,
     };
+    let place = format!("{}: [flow]", case.path.display());
+    Ok(MeshOptions {
+        flow: Flow::from_input(&flow_input(case), &place, str::to_string)?,
+        ..m
+    })
+}
+
+/// The case's `[flow]` values as given (unchecked; [`mesh_options`] checks them).
+pub fn flow_input(case: &LoadedCase) -> FlowInput {
     let f = &case.case.flow;
-    let input = FlowInput {
+    FlowInput {
         speed: f.speed,
         alpha: f.alpha,
         sideslip: f.sideslip,
         nu: f.nu,
         reynolds: f.reynolds,
         length: f.length,
-    };
-    let place = format!("{}: [flow]", case.path.display());
-    Ok(MeshOptions {
-        flow: Flow::from_input(&input, &place, str::to_string)?,
-        ..m
-    })
+    }
+}
+
+/// `over`'s values where given, else `base`'s: the flow of `convert CASE.toml DIR/NAME.foam`
+/// with flags over the case's `[flow]`. The viscosity goes as one group (`nu`, or
+/// `reynolds` with `length`): a flag of that group replaces all three of the case's.
+pub fn flow_over(base: &FlowInput, over: &FlowInput) -> FlowInput {
+    let viscosity = over.nu.is_some() || over.reynolds.is_some() || over.length.is_some();
+    let v = if viscosity { over } else { base };
+    FlowInput {
+        speed: over.speed.or(base.speed),
+        alpha: over.alpha.or(base.alpha),
+        sideslip: over.sideslip.or(base.sideslip),
+        nu: v.nu,
+        reynolds: v.reynolds,
+        length: v.length,
+    }
 }
 
 /// Writes a CGNS file (the `cgns` feature), or says how to get one.

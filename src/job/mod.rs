@@ -10,7 +10,7 @@ pub mod smooth;
 pub mod verify;
 pub mod volume;
 
-pub use mesh::{mesh_options, write_mesh, MeshOptions, FOAM_SPAN, NO_CGNS};
+pub use mesh::{flow_input, flow_over, mesh_options, write_mesh, MeshOptions, FOAM_SPAN, NO_CGNS};
 
 use crate::algebraic::transform::transfinite;
 use crate::case::{BlockKind, LoadedCase};
