@@ -114,10 +114,9 @@ impl Assemble for Periodic9 {
                         continue;
                     }
                     for di in 0..3usize {
+                        // zeros too: the pattern stays the same from step to step
                         let v = a[di + 3 * dj];
-                        if v != 0.0 {
-                            t.push(Triplet::new(p, self.wrap(i, di) + nx * (j + dj - 1), v));
-                        }
+                        t.push(Triplet::new(p, self.wrap(i, di) + nx * (j + dj - 1), v));
                     }
                 }
             }
