@@ -330,3 +330,56 @@ fn grids_do_not_depend_on_the_cad_parametrization() {
     assert!(r[0] > 2.2 && r[1] > 3.0 && r[1] > r[0], "{diffs:?}");
     assert!(diffs[2][1] < 2e-3, "{diffs:?}");
 }
+
+#[test]
+fn bare_surfaces_of_a_geometric_set_are_read_and_gridded_on_their_surfaces() {
+    // OpenVSP writes its components as bare B-spline surfaces in GEOMETRIC_SETs, with no
+    // face and no shell: each is an untrimmed four-sided patch. The two of the file are
+    // z = x y (bilinear) and z = x² (quadratic in u, y = 2 v).
+    let path = file("bare_surfaces.step");
+    let faces = read_step_faces(&path).unwrap();
+    assert_eq!(faces.len(), 2);
+    for f in &faces {
+        assert_eq!(f.route(), ellipgrid::cad::Route::Patch, "face {}", f.index);
+    }
+    let d = tempfile::tempdir().unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "step",
+            "grid",
+            path.to_str().unwrap(),
+            "--all",
+            "--ni",
+            "17",
+            "--nj",
+            "9",
+            "-o",
+            "bare.x",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let file = ellipgrid::io::plot3d::read_plot3d(&d.path().join("bare.x")).unwrap();
+    assert_eq!(file.blocks.len(), 2);
+    let on: [fn([f64; 3]) -> f64; 2] = [|p| p[2] - p[0] * p[1], |p| p[2] - p[0] * p[0]];
+    let extent = [[1.0, 1.0], [1.0, 2.0]];
+    for (k, b) in file.blocks.iter().enumerate() {
+        let ellipgrid::io::Block::Surface(g) = b else {
+            panic!("block {k} is not a surface")
+        };
+        assert_eq!((g.ni(), g.nj()), (17, 9));
+        let (mut hi_x, mut hi_y) = (0.0f64, 0.0f64);
+        for p in 0..g.ni() * g.nj() {
+            let q = node(g, p);
+            assert!(
+                on[k](q).abs() < 1e-12,
+                "block {k} node {p} {q:?} off its surface"
+            );
+            hi_x = hi_x.max(q[0]);
+            hi_y = hi_y.max(q[1]);
+        }
+        // the whole surface: the grid reaches the far corner of the parameter square
+        assert!((hi_x - extent[k][0]).abs() < 1e-12 && (hi_y - extent[k][1]).abs() < 1e-12);
+        assert!(unfolded(g), "block {k} folds");
+    }
+}

@@ -5,7 +5,7 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `mod` | [`read_step_faces`]: every face of every shell, numbered from 1; [`step_surface`] |
+//! | `mod` | [`read_step_faces`]: every face of every shell, numbered from 1 (or every bare B-spline surface of a file without faces); [`step_surface`] |
 //! | `patch` | untrimmed four-sided B-spline/NURBS faces: the check, [`grid_patch`] |
 //! | `trim` | a face's boundary loop on its surface: (u, v) by projection, corners, four sides |
 //! | `face` | [`grid_face`]: any one-loop face as a block face (Section 2 in (u, v), then Section 4) |
@@ -30,6 +30,11 @@
 //!   as a block face ([`grid_face_blocks`]): an O-type ring of four blocks around each hole
 //!   (the face first cut into one-hole strips between holes), or four blocks across a closed
 //!   band without a seam edge (two loops winding around a periodic surface).
+//!
+//! A file with no face in any shell (OpenVSP writes its components as bare B-spline surfaces
+//! in `GEOMETRIC_SET`s) gives its B-spline and NURBS surfaces instead, each the whole surface
+//! as an untrimmed four-sided patch; a surface with a collapsed side (a wing tip or a nose
+//! closed to a point) is refused by the patch route ("the edge has zero length").
 //!
 //! Faces without a boundary, whose one loop winds around the surface (a cap around a pole),
 //! or that cannot be split into blocks are refused with the reason.
@@ -129,7 +134,12 @@ impl StepFace {
         }
         match &self.loops {
             Err(e) => Route::Refused(e.clone()),
-            Ok(l) if l.is_empty() => Route::Refused("no boundary loop".into()),
+            // a bare surface (no loop) that cannot be evaluated says why
+            Ok(l) if l.is_empty() => Route::Refused(
+                self.surface_error
+                    .clone()
+                    .unwrap_or_else(|| "no boundary loop".into()),
+            ),
             Ok(l) if l.len() > 1 => Route::Holes(l.len() - 1),
             Ok(l) => Route::Trimmed(l[0].len()),
         }
@@ -218,11 +228,15 @@ pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
             Error::format(path, format!("the STEP reader failed: {msg}"))
         })?
         .map_err(|m| Error::format(path, m))?;
+    let (shells, bare) = shells;
     let mut faces = Vec::new();
     for shell in &shells {
         for face in &shell.faces {
             faces.push(step_face(faces.len() + 1, shell, face));
         }
+    }
+    for surface in bare {
+        faces.push(bare_face(faces.len() + 1, surface));
     }
     if faces.is_empty() {
         return Err(Error::format(
@@ -327,6 +341,30 @@ fn step_face(index: usize, shell: &Shell, face: &CompressedFace<StepSurface>) ->
     }
 }
 
+/// A bare surface (no face, no edges) as a face: the whole surface, an untrimmed four-sided
+/// patch bounded by its parameter rectangle.
+fn bare_face(index: usize, surface: StepSurface) -> StepFace {
+    let s = match &surface {
+        StepSurface::BSplineSurface(s) => BSplineSurf::from_truck_bspline(s),
+        StepSurface::NurbsSurface(s) => BSplineSurf::from_truck_nurbs(s),
+        _ => unreachable!("bare surfaces are B-spline or NURBS surfaces"),
+    };
+    let (surface_ok, surface_error) = match s {
+        Ok(s) => (Some(s), None),
+        Err(e) => (None, Some(e.to_string())),
+    };
+    StepFace {
+        index,
+        surface_type: surface_type(&surface),
+        surface: surface_ok,
+        surface_error,
+        trimmed: None,
+        cad_surface: surface,
+        loops: Ok(Vec::new()),
+        orientation: true,
+    }
+}
+
 /// The surface of face `face` (1-based) of a STEP file, for use as a surface block.
 ///
 /// # Errors
@@ -347,7 +385,15 @@ pub fn step_surface(path: &Path, face: usize) -> Result<BSplineSurf> {
     f.patch(path).cloned()
 }
 
-fn parse_shells(text: &str) -> std::result::Result<Vec<Shell>, String> {
+/// Bare surfaces: B-spline and NURBS surfaces of a file without a face in any shell (OpenVSP
+/// writes its components so, in `GEOMETRIC_SET`s), each an untrimmed four-sided patch.
+type Bare = Vec<StepSurface>;
+
+fn parse_shells(text: &str) -> std::result::Result<(Vec<Shell>, Bare), String> {
+    use truck_stepio::r#in::ruststep::tables::EntityTable;
+    use truck_stepio::r#in::{
+        BSplineSurfaceWithKnotsHolder as Knots, RationalBSplineSurfaceHolder as Rational,
+    };
     let exchange = ruststep::parser::parse(text).map_err(|e| format!("not a STEP file: {e}"))?;
     let data = exchange
         .data
@@ -356,11 +402,34 @@ fn parse_shells(text: &str) -> std::result::Result<Vec<Shell>, String> {
     let table = Table::from_data_section(data);
     let mut ids: Vec<&u64> = table.shell.keys().collect();
     ids.sort();
-    ids.into_iter()
+    let shells = ids
+        .into_iter()
         .map(|id| {
             table
                 .to_compressed_shell(&table.shell[id])
                 .map_err(|e| format!("shell #{id}: {e}"))
         })
-        .collect()
+        .collect::<std::result::Result<Vec<Shell>, String>>()?;
+    let mut bare = Vec::new();
+    if shells.iter().all(|s| s.faces.is_empty()) {
+        // Entity order; a surface truck cannot convert is left out, as faces are.
+        let mut ids: Vec<u64> = table.b_spline_surface_with_knots.keys().copied().collect();
+        ids.extend(table.rational_b_spline_surface.keys());
+        ids.sort();
+        for id in ids {
+            let surface = if table.b_spline_surface_with_knots.contains_key(&id) {
+                EntityTable::<Knots>::get_owned(&table, id)
+                    .ok()
+                    .and_then(|k| (&k).try_into().ok())
+                    .map(|s| StepSurface::BSplineSurface(Box::new(s)))
+            } else {
+                EntityTable::<Rational>::get_owned(&table, id)
+                    .ok()
+                    .and_then(|r| (&r).try_into().ok())
+                    .map(|s| StepSurface::NurbsSurface(Box::new(s)))
+            };
+            bare.extend(surface);
+        }
+    }
+    Ok((shells, bare))
 }
