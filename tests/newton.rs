@@ -84,9 +84,12 @@ fn steps(g: &job::Generated) -> usize {
 fn newton_reaches_the_picard_grid_and_its_stop_is_honest() {
     let tol = 1e-10;
     type Edit = fn(&str) -> String;
-    let cases: [(&str, &str, Edit); 5] = [
+    let cases: [(&str, &str, Edit); 6] = [
         // the transfinite start folds in the wavy wall's valleys
         ("folded start", "folding_start.toml", same),
+        // a deep mushroom-shaped dent, the transfinite start folds (257², coarse levels of
+        // Newton steps stopped at nested::COARSE_STOP_NEWTON)
+        ("dented square", "dented_square.toml", same),
         // orthogonality at four edges: three solves (steps 1 and 3 by Newton)
         ("orthogonality, direct", "orthogonal.toml", same),
         ("orthogonality, multigrid", "orthogonal.toml", multigrid),

@@ -258,7 +258,7 @@ pub fn solve_harmonic<const D: usize>(
         rel_tol: 1e-12,
         max_iter: 200,
     };
-    let info = solver.solve(&rhs, &mut x, &ctl).map_err(solve_err)?;
+    let info = krylov_solve(&a, &*solver, &rhs, &mut x, &ctl).map_err(solve_err)?;
     // The iteration aims at 1e-12 but may stall at round-off on strongly stretched grids
     // (1e-5 wall spacing next to 1-chord far-field cells); 1e-9 is far below what the
     // orthogonality step needs.
@@ -284,6 +284,39 @@ pub fn solve_harmonic<const D: usize>(
         }
     }
     Ok(s)
+}
+
+/// `a x = rhs` by Bi-CGSTAB right-preconditioned by `solver` (set up for `a`; one multigrid
+/// cycle per application, an exact solve for the direct solver), from `x`.
+///
+/// Why not `solver.solve`: on the t problem of the O-grid blocks (Neumann at both cuts) the
+/// plain cycles contract at only ~0.2, so the multigrid's twelve plain cycles missed 1e-12
+/// and its Bi-CGSTAB fallback started again from zero: 24–28 cycles, where Bi-CGSTAB from
+/// the start takes 8–12 (NACA0012 O-grid, 4 × 257², `examples/bench_multiblock.rs`).
+fn krylov_solve(
+    a: &Stencil9,
+    solver: &dyn LinearSolver,
+    rhs: &[f64],
+    x: &mut [f64],
+    ctl: &SolveControl,
+) -> std::result::Result<crate::solve::SolveInfo, SolveError> {
+    let mut failed = None;
+    let info = crate::solve::krylov::bicgstab(
+        &mut |v, out| a.apply(v, out),
+        &mut |v, out| {
+            if let Err(e) = solver.precondition(v, out) {
+                failed.get_or_insert(e);
+                out.copy_from_slice(v);
+            }
+        },
+        rhs,
+        x,
+        ctl,
+    );
+    match failed {
+        Some(e) => Err(e),
+        None => info,
+    }
 }
 
 /// The stencil over the unknown rectangle and its right-hand side (Dirichlet neighbours moved
