@@ -223,6 +223,14 @@ pub(crate) trait System {
     fn apply(&mut self, largest: f64) -> f64;
     /// The length that updates are relative to (the domain diameter).
     fn diameter(&self) -> f64;
+    /// Sets the linear solver up for the operator of the last `evaluate` (only updates it
+    /// if `small`). Default: [`prepare`] from `linear()`; a system may instead let the solver
+    /// take its operator over ([`LinearSolver::adopt`]) and take it back at the next
+    /// `evaluate`.
+    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
+        let lin = self.linear();
+        prepare(lin.solver, lin.a, small)
+    }
 }
 
 /// The linear part of a [`System`], borrowed for one step.
@@ -313,9 +321,8 @@ pub(crate) fn run<S: System>(
         place,
         |small, ctl, threshold| {
             let residual = evaluate(&mut *sys);
-            let lin = sys.linear();
             let small = small && moved < SMALL_CHANGE;
-            prepare(lin.solver, lin.a, small).map_err(|source| Error::Solve {
+            sys.prepare(small).map_err(|source| Error::Solve {
                 place: place.to_string(),
                 source,
             })?;
