@@ -457,6 +457,13 @@ pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
     }
 }
 
+/// From this many unknowns the coordinates of a Picard step are solved one after the other
+/// (each solve parallel inside: the multigrid's smoothers, residuals and transfers), so that
+/// one cycle workspace serves them all instead of one per coordinate (#16: 32 bytes per node
+/// in 2D, ~47 per node and coordinate in 3D). Below, the coordinates run concurrently,
+/// which keeps both cores busy on grids too small for the solver's own parallelism.
+pub(crate) const ONE_AT_A_TIME: usize = 1 << 18;
+
 /// The corrections of one Picard step in correction form, A δ = b − A x_k from δ₀ = 0, one
 /// coordinate per rayon task with the operator's one setup of `solver`; returns the
 /// solves' results and the largest |δ|. The correction form keeps the cycles' round-off
@@ -468,14 +475,15 @@ pub(crate) fn solve_corrections<A>(
     r: &[Vec<f64>],
     ctl: &SolveControl,
 ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
-    let infos = u
-        .par_iter_mut()
-        .zip(r.par_iter())
-        .map(|(uc, rc)| {
-            uc.fill(0.0);
-            solver.solve(rc, uc, ctl)
-        })
-        .collect();
+    let one = |(uc, rc): (&mut Vec<f64>, &Vec<f64>)| {
+        uc.fill(0.0);
+        solver.solve(rc, uc, ctl)
+    };
+    let infos = if u.first().map_or(0, Vec::len) >= ONE_AT_A_TIME {
+        u.iter_mut().zip(r.iter()).map(one).collect()
+    } else {
+        u.par_iter_mut().zip(r.par_iter()).map(one).collect()
+    };
     let largest = u
         .iter()
         .map(|uc| {
