@@ -80,7 +80,7 @@ pub fn assemble<const D: usize>(
             for (ii, st) in arow.iter_mut().enumerate() {
                 let n = ii + 1 + ni * j;
                 let (e, w, no, so) = (n + 1, n - 1, n + ni, n - ni);
-                *st = stencil_at(xs, ctrl.at(n), [e, w, no, so]);
+                *st = stencil_at(xs, &ctrl.at(n), [e, w, no, so]);
             }
         });
     // Known boundary neighbours go to the right-hand side (rows next to the boundary only).
