@@ -130,7 +130,7 @@ mod tests {
             t_e1: dist(512, 1.3),
             t_e2: dist(512, 2.1),
         };
-        assert!(513 * 512 >= COMPUTED_FROM);
+        const { assert!(513 * 512 >= COMPUTED_FROM) };
         assert!(Control2::from_algebraic(&straight_line(&big)).p.is_empty());
     }
 

@@ -50,8 +50,12 @@ pub struct Controls<const K: usize, const DIM: usize> {
     /// The (s, t[, u]) grid the values are computed from (empty vectors when stored).
     param: [Vec<f64>; DIM],
     /// The values at node `n` from `dims` and `param` (zero on the boundary).
-    node: fn(&[usize; DIM], &[Vec<f64>; DIM], usize) -> [f64; K],
+    node: NodeFn<K, DIM>,
 }
+
+/// The control functions at node `n` of a grid of `dims` nodes from its (s, t[, u]) grid.
+type NodeFn<const K: usize, const DIM: usize> =
+    fn(&[usize; DIM], &[Vec<f64>; DIM], usize) -> [f64; K];
 
 /// Grids of at least this many nodes compute their algebraic control functions at each use
 /// instead of storing them (see [`Controls`]): a few percent of an assembly's time, not
@@ -98,7 +102,7 @@ impl<const K: usize, const DIM: usize> Controls<K, DIM> {
     pub(crate) fn computed(
         dims: [usize; DIM],
         param: [Vec<f64>; DIM],
-        node: fn(&[usize; DIM], &[Vec<f64>; DIM], usize) -> [f64; K],
+        node: NodeFn<K, DIM>,
     ) -> Self {
         Controls {
             dims,
