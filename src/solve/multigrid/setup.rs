@@ -20,7 +20,7 @@ pub(super) struct Level {
     /// The operator (level 0: a clipped copy of the caller's, or the caller's own rows taken
     /// over by `adopt`; empty after `give_back`).
     pub a: Vec<[f64; 9]>,
-    /// x- and y-line factors of the smoother (see `relax.rs`; empty if the
+    /// x-line factors and y-line operator of the smoother (see `relax.rs`; empty if the
     /// smoother does not use them, and on the coarsest level).
     pub xop: Vec<[f64; 2]>,
     pub yop: YLineOp,

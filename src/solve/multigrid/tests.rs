@@ -724,7 +724,7 @@ fn explore_factors() {
 }
 
 /// After a zebra half sweep the relaxed lines have a zero residual, and the half residual
-/// (rows from the operator, columns by the y-line factors' blocks) equals the full one.
+/// (rows from the operator, columns from the y-line operator) equals the full one.
 #[test]
 fn half_residuals_match_full_residual() {
     for (nx, ny) in [(17, 12), (16, 9), (2, 5)] {
