@@ -107,7 +107,7 @@ impl Hierarchy {
                         xzebra(&lev.a, &lev.xop, nx, ny, x, b, c);
                         last = Zeroed::Rows(c);
                     } else {
-                        yzebra(&lev.a, &lev.yop, nx, ny, x, b, c);
+                        yzebra(&lev.yop, nx, ny, x, b, c);
                         last = Zeroed::Cols(c);
                     }
                 }
@@ -149,7 +149,7 @@ impl Hierarchy {
         {
             let (fine, coarse) = lv.split_at_mut(l + 1);
             let (v, vc) = (&fine[l], &mut coarse[0]);
-            interp::restrict(interp::restriction(&lev.p, &lev.r), nx, ny, &v.r, &mut vc.b);
+            interp::restrict(&lev.r, nx, ny, &v.r, &mut vc.b);
             vc.x.fill(0.0);
         }
         let coarsest_next = l + 2 == nl;

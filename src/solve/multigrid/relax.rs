@@ -3,12 +3,13 @@
 //! A zebra half sweep relaxes every second line (one colour) exactly: the line's tridiagonal
 //! system (its coefficients along the line) is solved by the Thomas algorithm with the other
 //! colour's values frozen. Lines of one colour are independent, so they run in parallel.
-//! The Thomas pivots are factored once per operator: per unknown the inverse pivot and the
-//! modified upper coefficient ([`factor_x`], [`factor_y`]); a sweep reads the couplings
-//! from the stencil itself and only eliminates the right-hand side. The y-line factors are
-//! stored by column blocks ([`YLineOp`]): within a block of [`YLineOp::W`] columns, one
-//! colour's factors of all rows are contiguous, and the block's columns stay in cache
-//! between the forward elimination and the back substitution.
+//! The Thomas pivots are factored once per operator: for x-lines the inverse pivots and the
+//! modified upper coefficients ([`factor_x`], the sweep reads the stencil itself), for y-lines
+//! a *line operator* (the stencil scaled by the inverse pivots, [`factor_y`]); a sweep only
+//! eliminates the right-hand side. The y-line operator is stored by column blocks ([`YLineOp`]): within a block of
+//! [`YLineOp::W`] columns, one colour's records of all rows are contiguous, so that a half
+//! sweep streams through memory while the block's columns stay in cache between the forward
+//! elimination and the back substitution.
 //!
 //! All vectors here are *padded*: point `p = i + nx j` lives at `v[pad + p]` with
 //! `pad = nx + 1` zeros before row 0 and after row `ny − 1` (see [`pad`]), so that the nine
@@ -81,19 +82,17 @@ pub(super) fn factor_x(
     }
 }
 
-/// The y-line factors: per unknown, the inverse Thomas pivot `inv` of its column's
-/// tridiagonal system `(a_S, a_C, a_N)` and the modified upper coefficient `cp = a_N·inv`;
-/// the sweep reads the couplings from the stencil itself (as the x-lines do). A scaled copy
-/// of the stencil (64 bytes per unknown more) made the sweep read one colour's records
-/// contiguously; without it a half sweep reads the stencil rows of its block whole (twice
-/// the stencil traffic) but the hierarchy keeps 56 bytes per unknown less (#16).
+/// The y-line operator: per unknown, the stencil scaled by the inverse Thomas pivot of its
+/// column's tridiagonal system `(a_S, a_C, a_N)`, `op = [SW, S, SE, W]·inv, inv, [E, NW, NE]·inv`,
+/// and the modified upper coefficient `cp = a_N·inv` (kept apart: the back substitution reads
+/// only `cp`).
 ///
 /// Layout: column blocks `[i0, i1)` of `W` columns (the last may be narrower) one after the
 /// other; inside a block, colour 0 (even `i`) for all rows, then colour 1; inside a colour, row
 /// by row. A block occupies `[i0 ny, i1 ny)`.
 #[derive(Clone, Debug, Default)]
 pub(super) struct YLineOp {
-    pub inv: Vec<f64>,
+    pub op: Vec<[f64; 8]>,
     pub cp: Vec<f64>,
 }
 
@@ -102,12 +101,12 @@ impl YLineOp {
     pub(super) const W: usize = 32;
 
     pub(super) fn resize(&mut self, n: usize) {
-        self.inv.resize(n, 0.0);
+        self.op.resize(n, [0.0; 8]);
         self.cp.resize(n, 0.0);
     }
 
     pub(super) fn is_empty(&self) -> bool {
-        self.inv.is_empty()
+        self.op.is_empty()
     }
 
     /// Columns of `colour` in the block `[i0, i1)` (`i0` even).
@@ -127,17 +126,17 @@ impl YLineOp {
     }
 }
 
-/// Runs `f(i0, i1, inv_block, cp_block)` over the column blocks of y-line factors, in
+/// Runs `f(i0, i1, op_block, cp_block)` over the column blocks of a y-line operator, in
 /// parallel when large, and sums the results.
 fn for_blocks<T: std::iter::Sum<T> + Send>(
     nx: usize,
     ny: usize,
-    op: &[f64],
+    op: &[[f64; 8]],
     cp: &[f64],
-    f: impl Fn(usize, usize, &[f64], &[f64]) -> T + Sync + Send,
+    f: impl Fn(usize, usize, &[[f64; 8]], &[f64]) -> T + Sync + Send,
 ) -> T {
     let chunk = YLineOp::W * ny;
-    let g = |(b, (op, cp)): (usize, (&[f64], &[f64]))| {
+    let g = |(b, (op, cp)): (usize, (&[[f64; 8]], &[f64]))| {
         let i0 = b * YLineOp::W;
         f(i0, (i0 + YLineOp::W).min(nx), op, cp)
     };
@@ -157,7 +156,7 @@ fn for_blocks<T: std::iter::Sum<T> + Send>(
     }
 }
 
-/// Builds the y-line factors of `a`.
+/// Builds the y-line operator of `a`.
 pub(super) fn factor_y(
     a: &[[f64; 9]],
     nx: usize,
@@ -166,7 +165,7 @@ pub(super) fn factor_y(
 ) -> Result<(), SolveError> {
     yop.resize(nx * ny);
     let chunk = YLineOp::W * ny;
-    let work = |(b, (inv, cp)): (usize, (&mut [f64], &mut [f64]))| {
+    let work = |(b, (op, cp)): (usize, (&mut [[f64; 8]], &mut [f64]))| {
         let i0 = b * YLineOp::W;
         let i1 = (i0 + YLineOp::W).min(nx);
         for colour in 0..2 {
@@ -183,7 +182,16 @@ pub(super) fn factor_y(
                         return Err(pivot_error(i, j, piv, 'y'));
                     }
                     let v = 1.0 / piv;
-                    inv[q] = v;
+                    op[q] = [
+                        m[0] * v,
+                        m[1] * v,
+                        m[2] * v,
+                        m[3] * v,
+                        v,
+                        m[5] * v,
+                        m[6] * v,
+                        m[8] * v,
+                    ];
                     cp[q] = m[7] * v;
                 }
             }
@@ -191,13 +199,13 @@ pub(super) fn factor_y(
         Ok(())
     };
     if use_par(nx * ny) {
-        yop.inv
+        yop.op
             .par_chunks_mut(chunk)
             .zip(yop.cp.par_chunks_mut(chunk))
             .enumerate()
             .try_for_each(work)
     } else {
-        yop.inv
+        yop.op
             .chunks_mut(chunk)
             .zip(yop.cp.chunks_mut(chunk))
             .enumerate()
@@ -321,60 +329,47 @@ fn prefetch_span(p: *const f64, len: usize) {
     let _ = (p, len);
 }
 
-/// Zebra y-line half sweep over the columns `i ≡ colour (mod 2)` of operator `a` with its
-/// y-line factors `yop`.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn yzebra(
-    a: &[[f64; 9]],
-    yop: &YLineOp,
-    nx: usize,
-    ny: usize,
-    x: &mut [f64],
-    b: &[f64],
-    colour: usize,
-) {
+/// Zebra y-line half sweep over the columns `i ≡ colour (mod 2)` with the y-line operator.
+pub(super) fn yzebra(yop: &YLineOp, nx: usize, ny: usize, x: &mut [f64], b: &[f64], colour: usize) {
     let pd = pad(nx);
     assert_eq!(x.len(), padded_len(nx, ny));
     assert_eq!(b.len(), padded_len(nx, ny));
-    assert_eq!(a.len(), nx * ny);
-    assert_eq!(yop.inv.len(), nx * ny);
+    assert_eq!(yop.op.len(), nx * ny);
     assert_eq!(yop.cp.len(), nx * ny);
     let xp = SharedPtr(unsafe { x.as_mut_ptr().add(pd) });
     let b = &b[pd..pd + nx * ny];
-    for_blocks(nx, ny, &yop.inv, &yop.cp, |i0, i1, inv, cp| {
+    for_blocks(nx, ny, &yop.op, &yop.cp, |i0, i1, op, cp| {
         let first = i0 + colour;
         if first >= i1 {
             return 0.0;
         }
         let cnt = YLineOp::count(i0, i1, colour);
         let base = YLineOp::colour_base(i0, i1, colour, ny);
-        let (inv, cp) = (&inv[base..base + cnt * ny], &cp[base..base + cnt * ny]);
+        let (op, cp) = (&op[base..base + cnt * ny], &cp[base..base + cnt * ny]);
         let x = xp.get();
         // SAFETY: a block writes only the columns of `colour` in [i0, i1) and reads the
         // other colour; reads across the left/right grid edge are skipped (they would wrap
         // onto a column of the same colour); rows -1 and ny are padding.
         unsafe {
-            for (j, invs) in inv.chunks_exact(cnt).enumerate() {
+            for (j, ops) in op.chunks_exact(cnt).enumerate() {
                 let row = j * nx;
                 if j + PREFETCH_ROWS < ny {
                     let ahead = row + PREFETCH_ROWS * nx + first;
                     prefetch_span(x.add(ahead + nx), 2 * cnt);
                     prefetch_span(b.as_ptr().add(ahead), 2 * cnt);
-                    prefetch_span(a.as_ptr().add(ahead) as *const f64, 18 * cnt);
                 }
-                for (t, v) in invs.iter().enumerate() {
+                for (t, m) in ops.iter().enumerate() {
                     let i = first + 2 * t;
                     let p = row + i;
-                    let m = a.get_unchecked(p);
                     let xq = x.add(p);
-                    let mut r = *b.get_unchecked(p) - m[1] * *xq.sub(nx);
+                    let mut r = m[4] * *b.get_unchecked(p) - m[1] * *xq.sub(nx);
                     if i > 0 {
                         r -= m[0] * *xq.sub(nx + 1) + m[3] * *xq.sub(1) + m[6] * *xq.add(nx - 1);
                     }
                     if i + 1 < nx {
-                        r -= m[2] * *xq.sub(nx - 1) + m[5] * *xq.add(1) + m[8] * *xq.add(nx + 1);
+                        r -= m[2] * *xq.sub(nx - 1) + m[5] * *xq.add(1) + m[7] * *xq.add(nx + 1);
                     }
-                    *xq = r * v;
+                    *xq = r;
                 }
             }
             for j in (0..ny.saturating_sub(1)).rev() {
@@ -469,8 +464,8 @@ fn for_rows(
 }
 
 /// `r = b − A x` on padded vectors; returns ‖r‖₂². `zeroed` names lines whose residual is
-/// known to vanish: they are set to 0 without being computed (rows, or columns by the
-/// column blocks of the y-line factors `yop`).
+/// known to vanish: they are set to 0 without being computed (rows from `a`, columns from the
+/// y-line operator `yop`, so that only half of an operator is read).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn residual(
     a: &[[f64; 9]],
@@ -487,8 +482,8 @@ pub(super) fn residual(
     assert_eq!(b.len(), padded_len(nx, ny));
     assert_eq!(a.len(), nx * ny);
     match (zeroed, yop) {
-        (Zeroed::Cols(zc), Some(yop)) if yop.inv.len() == nx * ny => {
-            residual_cols(a, yop, nx, ny, x, b, r, 1 - zc)
+        (Zeroed::Cols(zc), Some(yop)) if yop.op.len() == nx * ny => {
+            residual_cols(yop, nx, ny, x, b, r, 1 - zc)
         }
         (Zeroed::Rows(zc), _) => for_rows(nx, ny, r, |j, out| {
             if j % 2 == zc {
@@ -506,11 +501,9 @@ pub(super) fn residual(
     }
 }
 
-/// `r = b − A x` at the columns `i ≡ colour (mod 2)`, 0 at the others, by the column blocks
-/// of the y-line factors `yop` (the order of the y-line sweep that zeroed the others).
-#[allow(clippy::too_many_arguments)]
+/// `r = b − A x` at the columns `i ≡ colour (mod 2)`, 0 at the others, from the y-line
+/// operator: with `ŝ = inv · m`, `inv · a_C = 1 + ŝ_S cp_(j−1)` and `inv · a_N = cp`.
 fn residual_cols(
-    a: &[[f64; 9]],
     yop: &YLineOp,
     nx: usize,
     ny: usize,
@@ -523,13 +516,16 @@ fn residual_cols(
     assert_eq!(r.len(), padded_len(nx, ny));
     let rp = SharedPtr(unsafe { r.as_mut_ptr().add(pd) });
     let b = &b[pd..pd + nx * ny];
-    for_blocks(nx, ny, &yop.inv, &yop.cp, |i0, i1, _, _| {
+    for_blocks(nx, ny, &yop.op, &yop.cp, |i0, i1, op, cp| {
         let rp = rp.get();
         let first = i0 + colour;
         let other = i0 + 1 - colour;
+        let cnt = YLineOp::count(i0, i1, colour);
+        let base = YLineOp::colour_base(i0, i1, colour, ny);
+        let (op, cp) = (&op[base..base + cnt * ny], &cp[base..base + cnt * ny]);
         let mut ss = 0.0;
         // SAFETY: a block writes only the entries of its own columns; x is padded, so the
-        // nine neighbours of every unknown are in range (couplings leaving the grid are 0).
+        // nine neighbours of every unknown are in range.
         unsafe {
             for j in 0..ny {
                 let row = j * nx;
@@ -537,25 +533,33 @@ fn residual_cols(
                     let ahead = row + PREFETCH_ROWS * nx + i0;
                     prefetch_span(x.as_ptr().add(pd + ahead + nx), i1 - i0);
                     prefetch_span(b.as_ptr().add(ahead), i1 - i0);
-                    prefetch_span(a.as_ptr().add(ahead) as *const f64, 9 * (i1 - i0));
                 }
                 let mut i = other;
                 while i < i1 {
                     *rp.add(row + i) = 0.0;
                     i += 2;
                 }
-                let mut i = first;
-                while i < i1 {
-                    let p = row + i;
-                    let m = a.get_unchecked(p);
+                if cnt == 0 {
+                    continue;
+                }
+                let ops = &op[j * cnt..(j + 1) * cnt];
+                let cps = &cp[j * cnt..(j + 1) * cnt];
+                let below = if j > 0 {
+                    &cp[(j - 1) * cnt..j * cnt]
+                } else {
+                    cps
+                };
+                for (t, m) in ops.iter().enumerate() {
+                    let p = row + first + 2 * t;
+                    let cpb = if j > 0 { below[t] } else { 0.0 };
                     let xq = x.as_ptr().add(pd + p);
-                    let v = *b.get_unchecked(p)
+                    let v = m[4] * *b.get_unchecked(p)
                         - (m[0] * *xq.sub(nx + 1) + m[1] * *xq.sub(nx) + m[2] * *xq.sub(nx - 1))
-                        - (m[3] * *xq.sub(1) + m[4] * *xq + m[5] * *xq.add(1))
-                        - (m[6] * *xq.add(nx - 1) + m[7] * *xq.add(nx) + m[8] * *xq.add(nx + 1));
-                    *rp.add(p) = v;
-                    ss += v * v;
-                    i += 2;
+                        - (m[3] * *xq.sub(1) + (1.0 + m[1] * cpb) * *xq + m[5] * *xq.add(1))
+                        - (m[6] * *xq.add(nx - 1) + cps[t] * *xq.add(nx) + m[7] * *xq.add(nx + 1));
+                    let res = v / m[4];
+                    *rp.add(p) = res;
+                    ss += res * res;
                 }
             }
         }
