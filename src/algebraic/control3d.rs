@@ -2,7 +2,7 @@
 
 use crate::algebraic::bilinear3d::{bilinear, det3, ParamGrid3};
 use crate::algebraic::flat_edge::edge_functions;
-use crate::algebraic::{ControlKind, Controls};
+use crate::algebraic::{ControlKind, Controls, COMPUTED_FROM};
 use crate::grid::faces::Faces;
 use crate::Result;
 use rayon::prelude::*;
@@ -42,7 +42,10 @@ impl Control3 {
         let dims = pg.dims();
         let [ni, nj, nk] = dims;
         let plane = ni * nj;
-        let st = [1, ni, plane];
+        if plane * nk >= COMPUTED_FROM {
+            let param = [pg.s.clone(), pg.t.clone(), pg.u.clone()];
+            return Controls::computed(dims, param, node);
+        }
         let mut p = vec![[0.0; 18]; plane * nk];
         p.par_chunks_mut(plane).enumerate().for_each(|(k, row)| {
             if k == 0 || k + 1 == nk {
@@ -51,28 +54,48 @@ impl Control3 {
             for j in 1..nj - 1 {
                 for i in 1..ni - 1 {
                     let n = i + ni * j + plane * k;
-                    let (ds, dds) = central(&pg.s, n, st);
-                    let (dt, ddt) = central(&pg.t, n, st);
-                    let (du, ddu) = central(&pg.u, n, st);
-                    let tm = [ds, dt, du];
-                    let d = det3(tm);
-                    let q = &mut row[i + ni * j];
-                    for m in 0..6 {
-                        let r = [dds[m], ddt[m], ddu[m]];
-                        // Cramer: x = T⁻¹ r, P = −x.
-                        for c in 0..3 {
-                            let mut mc = tm;
-                            for (rr, mrow) in r.iter().zip(mc.iter_mut()) {
-                                mrow[c] = *rr;
-                            }
-                            q[3 * m + c] = -det3(mc) / d;
-                        }
-                    }
+                    row[i + ni * j] = interior([&pg.s, &pg.t, &pg.u], n, [1, ni, plane]);
                 }
             }
         });
-        Controls { dims, p }
+        Controls::stored(dims, p)
     }
+}
+
+/// The control functions at the interior node `n` of the (s, t, u) grid `f` with strides
+/// `st` (see [`Control3::from_algebraic`]).
+#[inline]
+fn interior(f: [&[f64]; 3], n: usize, st: [usize; 3]) -> [f64; 18] {
+    let (ds, dds) = central(f[0], n, st);
+    let (dt, ddt) = central(f[1], n, st);
+    let (du, ddu) = central(f[2], n, st);
+    let tm = [ds, dt, du];
+    let d = det3(tm);
+    let mut q = [0.0; 18];
+    for m in 0..6 {
+        let r = [dds[m], ddt[m], ddu[m]];
+        // Cramer: x = T⁻¹ r, P = −x.
+        for c in 0..3 {
+            let mut mc = tm;
+            for (rr, mrow) in r.iter().zip(mc.iter_mut()) {
+                mrow[c] = *rr;
+            }
+            q[3 * m + c] = -det3(mc) / d;
+        }
+    }
+    q
+}
+
+/// The control functions at node `n` of a grid of `dims` nodes from its (s, t, u) grid `f`:
+/// [`interior`], zero on the boundary.
+fn node(dims: &[usize; 3], f: &[Vec<f64>; 3], n: usize) -> [f64; 18] {
+    let [ni, nj, nk] = *dims;
+    let plane = ni * nj;
+    let (i, j, k) = (n % ni, (n / ni) % nj, n / plane);
+    if i == 0 || j == 0 || k == 0 || i + 1 >= ni || j + 1 >= nj || k + 1 >= nk {
+        return [0.0; 18];
+    }
+    interior([&f[0], &f[1], &f[2]], n, [1, ni, plane])
 }
 
 /// The control functions of a block's faces for the chosen kind: from the bilinear
@@ -90,6 +113,33 @@ pub fn control_for(faces: &Faces, kind: ControlKind, place: &str) -> Result<Cont
 mod tests {
     use super::*;
     use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3};
+
+    /// The control functions computed at each use (large grids, #16) are those stored, bit
+    /// for bit, zero on the boundary.
+    #[test]
+    fn computed_controls_equal_stored_ones() {
+        let dist = |n: usize, p: f64| -> Vec<f64> {
+            (0..n)
+                .map(|k| (k as f64 / (n - 1) as f64).powf(p))
+                .collect()
+        };
+        let ef = EdgeFunctions3 {
+            s: [0.8, 1.2, 1.5, 2.0].map(|p| dist(7, p)),
+            t: [1.1, 0.7, 1.9, 1.4].map(|p| dist(6, p)),
+            u: [1.3, 1.6, 0.9, 2.2].map(|p| dist(8, p)),
+        };
+        let pg = bilinear(&ef, "b").unwrap();
+        let stored = Control3::from_algebraic(&pg);
+        assert!(!stored.p.is_empty());
+        let param = [pg.s.clone(), pg.t.clone(), pg.u.clone()];
+        let computed = Controls::computed(pg.dims(), param, node);
+        assert!(computed.p.is_empty());
+        assert_eq!(computed, stored);
+        assert!(computed.all_finite());
+        let n = 3 + 7 * (2 + 6 * 4);
+        assert!(stored.at(n).iter().filter(|v| **v != 0.0).count() > 9);
+        assert_eq!(computed.at(7 * 6 * 4), [0.0; 18], "zero on the boundary");
+    }
 
     #[test]
     fn thomas_middlecoff_in_3d() {

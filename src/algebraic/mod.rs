@@ -37,18 +37,78 @@ pub enum ControlKind {
 /// of a grid of `dims` nodes (i fastest), zero on the boundary. Its two uses are
 /// [`control2d::Control2`] (K = 6, eqs. [19, 20]) and [`control3d::Control3`] (K = 18, eqs.
 /// [83, 84]).
-#[derive(Clone, Debug, PartialEq)]
+///
+/// From [`COMPUTED_FROM`] nodes on, the algebraic control functions are not stored but
+/// computed at each [`Controls::at`] from the (s, t[, u]) grid they come from (kept instead:
+/// 16 instead of 48 bytes per node in 2D, 24 instead of 144 in 3D, #16), by the same
+/// arithmetic as the stored ones (bit-identical).
+#[derive(Clone, Debug)]
 pub struct Controls<const K: usize, const DIM: usize> {
     dims: [usize; DIM],
+    /// The stored values (empty when computed from `param`).
     p: Vec<[f64; K]>,
+    /// The (s, t[, u]) grid the values are computed from (empty vectors when stored).
+    param: [Vec<f64>; DIM],
+    /// The values at node `n` from `dims` and `param` (zero on the boundary).
+    node: NodeFn<K, DIM>,
+}
+
+/// The control functions at node `n` of a grid of `dims` nodes from its (s, t[, u]) grid.
+type NodeFn<const K: usize, const DIM: usize> =
+    fn(&[usize; DIM], &[Vec<f64>; DIM], usize) -> [f64; K];
+
+/// Grids of at least this many nodes compute their algebraic control functions at each use
+/// instead of storing them (see [`Controls`]): a few percent of an assembly's time, not
+/// worth it where memory does not matter.
+pub const COMPUTED_FROM: usize = 1 << 18;
+
+impl<const K: usize, const DIM: usize> PartialEq for Controls<K, DIM> {
+    /// Same size and the same values at every node, stored or computed.
+    fn eq(&self, other: &Self) -> bool {
+        self.dims == other.dims
+            && (0..self.len()).all(|n| {
+                let (a, b) = (self.at(n), other.at(n));
+                a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits())
+            })
+    }
+}
+
+/// No control functions (the node function of stored values is never called).
+fn zero_node<const K: usize, const DIM: usize>(
+    _: &[usize; DIM],
+    _: &[Vec<f64>; DIM],
+    _: usize,
+) -> [f64; K] {
+    [0.0; K]
 }
 
 impl<const K: usize, const DIM: usize> Controls<K, DIM> {
     /// All control functions zero: the grid system reduces to a Laplace (Winslow) grid.
     pub fn zeros(dims: [usize; DIM]) -> Self {
+        Self::stored(dims, vec![[0.0; K]; dims.iter().product()])
+    }
+
+    /// Stored values `p`, one per node.
+    pub(crate) fn stored(dims: [usize; DIM], p: Vec<[f64; K]>) -> Self {
         Controls {
             dims,
-            p: vec![[0.0; K]; dims.iter().product()],
+            p,
+            param: std::array::from_fn(|_| Vec::new()),
+            node: zero_node::<K, DIM>,
+        }
+    }
+
+    /// Values computed at each use by `node` from the (s, t[, u]) grid `param`.
+    pub(crate) fn computed(
+        dims: [usize; DIM],
+        param: [Vec<f64>; DIM],
+        node: NodeFn<K, DIM>,
+    ) -> Self {
+        Controls {
+            dims,
+            p: Vec::new(),
+            param,
+            node,
         }
     }
 
@@ -57,14 +117,26 @@ impl<const K: usize, const DIM: usize> Controls<K, DIM> {
         self.dims
     }
 
+    /// Number of nodes.
+    fn len(&self) -> usize {
+        self.dims.iter().product()
+    }
+
     /// The control functions at node index n.
     #[inline]
-    pub fn at(&self, n: usize) -> &[f64; K] {
-        &self.p[n]
+    pub fn at(&self, n: usize) -> [f64; K] {
+        if self.p.is_empty() {
+            (self.node)(&self.dims, &self.param, n)
+        } else {
+            self.p[n]
+        }
     }
 
     /// True if every value is finite (a degenerate algebraic map gives infinities).
     pub fn all_finite(&self) -> bool {
-        self.p.iter().all(|q| q.iter().all(|v| v.is_finite()))
+        use rayon::prelude::*;
+        (0..self.len())
+            .into_par_iter()
+            .all(|n| self.at(n).iter().all(|v| v.is_finite()))
     }
 }

@@ -126,7 +126,7 @@ pub fn periodic_control(pg: &ParamGrid) -> Control2 {
         }
         row[nc] = row[0];
     });
-    Controls { dims: [ni, nj], p }
+    Controls::stored([ni, nj], p)
 }
 
 /// The control functions of a periodic block for the chosen kind.

@@ -61,7 +61,7 @@ pub fn assemble<const D: usize>(
                 // east of column nc − 1 is column nc (= column 0), west of column 0 is nc − 1
                 let (e, w) = (n + 1, if i == 0 { nc - 1 + ni * j } else { n - 1 });
                 let (no, so) = (n + ni, n - ni);
-                *st = poisson2d::stencil_at(xs, ctrl.at(n), [e, w, no, so]);
+                *st = poisson2d::stencil_at(xs, &ctrl.at(n), [e, w, no, so]);
             }
         });
     // E3 and E4 neighbours go to the right-hand side (first and last row of unknowns).

@@ -223,6 +223,14 @@ pub(crate) trait System {
     fn apply(&mut self, largest: f64) -> f64;
     /// The length that updates are relative to (the domain diameter).
     fn diameter(&self) -> f64;
+    /// Sets the linear solver up for the operator of the last `evaluate` (only updates it
+    /// if `small`). Default: [`prepare`] from `linear()`; a system may instead let the solver
+    /// take its operator over ([`LinearSolver::adopt`]) and take it back at the next
+    /// `evaluate`.
+    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
+        let lin = self.linear();
+        prepare(lin.solver, lin.a, small)
+    }
 }
 
 /// The linear part of a [`System`], borrowed for one step.
@@ -313,9 +321,8 @@ pub(crate) fn run<S: System>(
         place,
         |small, ctl, threshold| {
             let residual = evaluate(&mut *sys);
-            let lin = sys.linear();
             let small = small && moved < SMALL_CHANGE;
-            prepare(lin.solver, lin.a, small).map_err(|source| Error::Solve {
+            sys.prepare(small).map_err(|source| Error::Solve {
                 place: place.to_string(),
                 source,
             })?;
@@ -450,6 +457,13 @@ pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
     }
 }
 
+/// From this many unknowns the coordinates of a Picard step are solved one after the other
+/// (each solve parallel inside: the multigrid's smoothers, residuals and transfers), so that
+/// one cycle workspace serves them all instead of one per coordinate (#16: 32 bytes per node
+/// in 2D, ~47 per node and coordinate in 3D). Below, the coordinates run concurrently,
+/// which keeps both cores busy on grids too small for the solver's own parallelism.
+pub(crate) const ONE_AT_A_TIME: usize = 1 << 18;
+
 /// The corrections of one Picard step in correction form, A δ = b − A x_k from δ₀ = 0, one
 /// coordinate per rayon task with the operator's one setup of `solver`; returns the
 /// solves' results and the largest |δ|. The correction form keeps the cycles' round-off
@@ -461,14 +475,15 @@ pub(crate) fn solve_corrections<A>(
     r: &[Vec<f64>],
     ctl: &SolveControl,
 ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
-    let infos = u
-        .par_iter_mut()
-        .zip(r.par_iter())
-        .map(|(uc, rc)| {
-            uc.fill(0.0);
-            solver.solve(rc, uc, ctl)
-        })
-        .collect();
+    let one = |(uc, rc): (&mut Vec<f64>, &Vec<f64>)| {
+        uc.fill(0.0);
+        solver.solve(rc, uc, ctl)
+    };
+    let infos = if u.first().map_or(0, Vec::len) >= ONE_AT_A_TIME {
+        u.iter_mut().zip(r.iter()).map(one).collect()
+    } else {
+        u.par_iter_mut().zip(r.par_iter()).map(one).collect()
+    };
     let largest = u
         .iter()
         .map(|uc| {

@@ -80,7 +80,7 @@ pub fn assemble<const D: usize>(
             for (ii, st) in arow.iter_mut().enumerate() {
                 let n = ii + 1 + ni * j;
                 let (e, w, no, so) = (n + 1, n - 1, n + ni, n - ni);
-                *st = stencil_at(xs, ctrl.at(n), [e, w, no, so]);
+                *st = stencil_at(xs, &ctrl.at(n), [e, w, no, so]);
             }
         });
     // Known boundary neighbours go to the right-hand side (rows next to the boundary only).
@@ -283,8 +283,21 @@ impl<const D: usize> picard::System for System2<'_, D> {
     type Op = Stencil9;
 
     fn evaluate(&mut self) -> f64 {
+        if self.a.is_empty() {
+            // the solver took the operator over at the last `prepare`
+            let (nx, ny) = (self.x.ni() - 2, self.x.nj() - 2);
+            self.a = match self.solver.give_back() {
+                Some(a) if (a.nx(), a.ny()) == (nx, ny) => a,
+                _ => Stencil9::zeros(nx, ny),
+            };
+        }
         assemble(self.x, self.ctrl, &mut self.a, &mut self.rhs);
         residual_scaled(self.x, &self.a, &self.rhs, self.diam, Some(&mut self.r))
+    }
+
+    /// The solver takes the operator over (one copy, not two; taken back by `evaluate`).
+    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
+        self.solver.adopt(&mut self.a, small)
     }
 
     fn linear(&mut self) -> picard::Linear<'_, Stencil9> {

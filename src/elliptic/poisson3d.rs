@@ -22,7 +22,7 @@ use crate::algebraic::control3d::Control3;
 use crate::elliptic::picard;
 use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep};
 use crate::solve::stencil19::{Stencil19, C, OFFSETS};
-use crate::solve::LinearSolver;
+use crate::solve::{LinearSolver, SolveError};
 use crate::{Grid3, Result};
 use rayon::prelude::*;
 
@@ -270,6 +270,15 @@ impl picard::System for System3<'_> {
     type Op = Stencil19;
 
     fn evaluate(&mut self) -> f64 {
+        if self.a.is_empty() {
+            // the solver took the operator over at the last `prepare`
+            let d = self.x.dims();
+            let dims = [d[0] - 2, d[1] - 2, d[2] - 2];
+            self.a = match self.solver.give_back() {
+                Some(a) if a.dims() == dims => a,
+                _ => Stencil19::zeros(dims[0], dims[1], dims[2]),
+            };
+        }
         assemble(self.x, self.ctrl, &mut self.a, &mut self.rhs);
         residual_into(
             self.x,
@@ -283,6 +292,11 @@ impl picard::System for System3<'_> {
 
     fn linear(&mut self) -> picard::Linear<'_, Stencil19> {
         picard::Linear::new(&mut *self.solver, &self.a, &self.r, &mut self.u)
+    }
+
+    /// The solver takes the operator over (one copy, not two; taken back by `evaluate`).
+    fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
+        self.solver.adopt(&mut self.a, small)
     }
 
     fn apply(&mut self, largest: f64) -> f64 {

@@ -130,6 +130,28 @@ pub trait LinearSolver<A = Stencil9>: Send + Sync {
         self.setup(a)
     }
 
+    /// Prepares the solver for the operator in `a` as [`LinearSolver::setup`] does (only as
+    /// [`LinearSolver::update`] if `small`), but may take the operator over instead of
+    /// copying it, leaving `a` empty (no unknowns): a solver that keeps the fine operator
+    /// anyway (the multigrids: their fine level) then holds the only copy, and a Picard
+    /// system and its solver share one operator. The caller takes it back with
+    /// [`LinearSolver::give_back`] before it assembles the next one. Default: `setup` or
+    /// `update` from `a`, which stays with the caller.
+    fn adopt(&mut self, a: &mut A, small: bool) -> Result<(), SolveError> {
+        if small {
+            self.update(a)
+        } else {
+            self.setup(a)
+        }
+    }
+
+    /// The operator taken over by the last [`LinearSolver::adopt`], handed back: the solver
+    /// cannot solve again before its next setup (`solve` is then [`SolveError::NotSetUp`]).
+    /// `None` if it holds none (the default).
+    fn give_back(&mut self) -> Option<A> {
+        None
+    }
+
     /// `x ≈ A⁻¹ b` as a preconditioner for the operator of the last `setup` or `update`: a
     /// fixed linear map, cheap rather than exact (multigrid: one cycle from zero). Default:
     /// a solve from zero to the default [`SolveControl`] (the direct solver: exact).

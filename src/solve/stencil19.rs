@@ -59,6 +59,24 @@ impl Stencil19 {
         }
     }
 
+    /// The operator on `nx × ny × nz` unknowns with the rows `coef` (taken over, not copied).
+    ///
+    /// # Panics
+    /// If `coef` does not hold `nx · ny · nz` rows.
+    pub fn from_coefs(dims: [usize; 3], coef: Vec<[f64; 19]>) -> Self {
+        assert_eq!(
+            coef.len(),
+            dims.iter().product::<usize>(),
+            "Stencil19::from_coefs: row count"
+        );
+        Stencil19 { dims, coef }
+    }
+
+    /// The rows, giving the operator up (no copy).
+    pub fn into_coefs(self) -> Vec<[f64; 19]> {
+        self.coef
+    }
+
     /// Unknowns along i, j, k.
     pub fn dims(&self) -> [usize; 3] {
         self.dims
@@ -97,7 +115,13 @@ impl Stencil19 {
     /// Which of the 19 neighbours of row (i, j, k) lie inside the grid.
     #[inline]
     pub fn inside(&self, i: usize, j: usize, k: usize) -> [bool; 19] {
-        let [nx, ny, nz] = self.dims;
+        Self::inside_of(self.dims, i, j, k)
+    }
+
+    /// Which of the 19 neighbours of row (i, j, k) lie inside a grid of `dims` unknowns.
+    #[inline]
+    pub fn inside_of(dims: [usize; 3], i: usize, j: usize, k: usize) -> [bool; 19] {
+        let [nx, ny, nz] = dims;
         std::array::from_fn(|m| {
             let [a, b, c] = OFFSETS[m];
             let ok = |v: usize, d: i8, n: usize| match d {

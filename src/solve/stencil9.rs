@@ -38,6 +38,20 @@ impl Stencil9 {
         }
     }
 
+    /// The operator on `nx × ny` unknowns with the rows `coef` (taken over, not copied).
+    ///
+    /// # Panics
+    /// If `coef` does not hold `nx · ny` rows.
+    pub fn from_coefs(nx: usize, ny: usize, coef: Vec<[f64; 9]>) -> Self {
+        assert_eq!(coef.len(), nx * ny, "Stencil9::from_coefs: row count");
+        Stencil9 { nx, ny, coef }
+    }
+
+    /// The rows, giving the operator up (no copy).
+    pub fn into_coefs(self) -> Vec<[f64; 9]> {
+        self.coef
+    }
+
     /// Unknowns along i.
     pub fn nx(&self) -> usize {
         self.nx

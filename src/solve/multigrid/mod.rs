@@ -307,7 +307,41 @@ impl Multigrid {
     }
 
     fn hierarchy(&self) -> Result<&Hierarchy, SolveError> {
-        self.h.as_ref().ok_or(SolveError::NotSetUp)
+        self.h
+            .as_ref()
+            .filter(|h| h.has_fine())
+            .ok_or(SolveError::NotSetUp)
+    }
+
+    /// [`LinearSolver::adopt`]: the fine level takes the rows of `a` over (no copy).
+    fn adopt_rows(&mut self, a: &mut Stencil9, small: bool) -> Result<(), SolveError> {
+        let (nx, ny) = (a.nx(), a.ny());
+        if nx == 0 || ny == 0 {
+            return Err(SolveError::Singular("multigrid: empty operator".into()));
+        }
+        let fits = self
+            .h
+            .as_ref()
+            .is_some_and(|h| h.fits(nx, ny, &self.params));
+        if !fits {
+            self.h = None;
+            self.pool.clear();
+            self.h = Some(Hierarchy::new(nx, ny, &self.params));
+        }
+        let h = self.h.as_mut().expect("hierarchy allocated");
+        h.params = self.params.clone();
+        let rows = std::mem::replace(a, Stencil9::zeros(0, 0)).into_coefs();
+        let res = h.take_fine(rows).and_then(|()| {
+            if small && fits {
+                h.refactor_fine()
+            } else {
+                h.refresh_loaded()
+            }
+        });
+        if res.is_err() {
+            self.h = None;
+        }
+        res
     }
 
     fn take_workspace(&self, h: &Hierarchy) -> Workspace {
@@ -421,6 +455,14 @@ impl LinearSolver for Multigrid {
 
     fn update(&mut self, a: &Stencil9) -> Result<(), SolveError> {
         Multigrid::update(self, a)
+    }
+
+    fn adopt(&mut self, a: &mut Stencil9, small: bool) -> Result<(), SolveError> {
+        self.adopt_rows(a, small)
+    }
+
+    fn give_back(&mut self) -> Option<Stencil9> {
+        self.h.as_mut()?.give_back_fine()
     }
 
     fn companion(&self) -> Option<Box<dyn LinearSolver>> {

@@ -48,23 +48,35 @@ impl LinearSolver for MultigridSafe {
         self.mg.update(a)
     }
 
+    fn adopt(&mut self, a: &mut Stencil9, small: bool) -> Result<(), SolveError> {
+        self.mg.adopt(a, small)
+    }
+
+    fn give_back(&mut self) -> Option<Stencil9> {
+        self.mg.give_back()
+    }
+
     fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError> {
-        let mut y = x.to_vec();
+        // the fallback restarts from the initial guess: kept only when it is not zero (a
+        // Picard correction starts from zero; a copy would cost 8 bytes per unknown and
+        // concurrent solve)
+        let start = x.iter().any(|&v| v != 0.0).then(|| x.to_vec());
         // plain cycles contract at ≤ 0.05 where they work: 12 of them reach 1e-13, so more
         // would only be a slow or diverging iteration
         let first = SolveControl {
             max_iter: ctl.max_iter.min(Self::PLAIN_CYCLES),
             ..*ctl
         };
-        let tried = match self.mg.solve(b, &mut y, &first) {
-            Ok(info) if info.converged => {
-                x.copy_from_slice(&y);
-                return Ok(info);
-            }
+        let tried = match self.mg.solve(b, x, &first) {
+            Ok(info) if info.converged => return Ok(info),
             Ok(info) => info.iterations,
             Err(SolveError::Diverged(_)) => 0,
             Err(e) => return Err(e),
         };
+        match &start {
+            Some(s) => x.copy_from_slice(s),
+            None => x.fill(0.0),
+        }
         let mut info = self.mg.bicgstab(b, x, ctl)?;
         info.iterations = tried + 2 * info.iterations;
         Ok(info)

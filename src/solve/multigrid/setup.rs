@@ -17,7 +17,8 @@ use crate::solve::SolveError;
 pub(super) struct Level {
     pub nx: usize,
     pub ny: usize,
-    /// The operator (level 0: a clipped copy of the caller's).
+    /// The operator (level 0: a clipped copy of the caller's, or the caller's own rows taken
+    /// over by `adopt`; empty after `give_back`).
     pub a: Vec<[f64; 9]>,
     /// x-line factors and y-line operator of the smoother (see `relax.rs`; empty if the
     /// smoother does not use them, and on the coarsest level).
@@ -74,7 +75,12 @@ impl Hierarchy {
                 let mut lev = Level {
                     nx,
                     ny,
-                    a: vec![[0.0; 9]; nx * ny],
+                    // level 0's operator is loaded or taken over at each setup
+                    a: if l == 0 {
+                        Vec::new()
+                    } else {
+                        vec![[0.0; 9]; nx * ny]
+                    },
                     p: vec![[0.0; 9]; nc],
                     r: vec![[0.0; 9]; nc],
                     ..Default::default()
@@ -111,10 +117,27 @@ impl Hierarchy {
 
     /// Copies `a` (same size as level 0) into level 0, clipped; rejects a bad diagonal.
     fn load_fine(&mut self, a: &Stencil9) -> Result<(), SolveError> {
-        let (nx, ny) = (a.nx(), a.ny());
         let l0 = &mut self.levels[0];
-        assert_eq!((l0.nx, l0.ny), (nx, ny));
-        copy_clipped(a, &mut l0.a);
+        assert_eq!((l0.nx, l0.ny), (a.nx(), a.ny()));
+        l0.a.clear();
+        l0.a.extend_from_slice(a.coefs());
+        self.check_fine()
+    }
+
+    /// Takes the rows `a` of the fine operator over (level 0's size, no copy), clipped;
+    /// rejects a bad diagonal ([`crate::solve::LinearSolver::adopt`]).
+    pub(super) fn take_fine(&mut self, a: Vec<[f64; 9]>) -> Result<(), SolveError> {
+        let l0 = &mut self.levels[0];
+        assert_eq!(a.len(), l0.n());
+        l0.a = a;
+        self.check_fine()
+    }
+
+    /// Clips level 0's operator and checks its diagonal.
+    fn check_fine(&mut self) -> Result<(), SolveError> {
+        let l0 = &mut self.levels[0];
+        let nx = l0.nx;
+        clip(&mut l0.a, nx, l0.ny);
         match first_bad_diagonal(&l0.a, nx) {
             Some((i, j)) => Err(SolveError::Singular(format!(
                 "multigrid: zero or non-finite diagonal {:e} at unknown ({i}, {j})",
@@ -124,14 +147,33 @@ impl Hierarchy {
         }
     }
 
+    /// Hands the fine operator back ([`crate::solve::LinearSolver::give_back`]), leaving
+    /// level 0 without one; `None` if it has none.
+    pub(super) fn give_back_fine(&mut self) -> Option<Stencil9> {
+        let l0 = &mut self.levels[0];
+        (l0.n() > 0 && l0.a.len() == l0.n())
+            .then(|| Stencil9::from_coefs(l0.nx, l0.ny, std::mem::take(&mut l0.a)))
+    }
+
+    /// True if level 0 holds its operator (not handed back).
+    pub(super) fn has_fine(&self) -> bool {
+        self.levels[0].a.len() == self.levels[0].n()
+    }
+
     /// Replaces the fine operator by `a` (same size as level 0) and refactors the fine
     /// smoother, keeping the transfer and coarse operators of the last [`Hierarchy::refresh`]
     /// (see [`crate::solve::multigrid::Multigrid::update`]).
     pub(super) fn refresh_fine(&mut self, a: &Stencil9) -> Result<(), SolveError> {
-        if self.levels.len() == 1 {
-            return self.refresh(a);
-        }
         self.load_fine(a)?;
+        self.refactor_fine()
+    }
+
+    /// Refactors the fine smoother for the operator just loaded into level 0, keeping the
+    /// rest of the last full setup (all of it, on a single level).
+    pub(super) fn refactor_fine(&mut self) -> Result<(), SolveError> {
+        if self.levels.len() == 1 {
+            return self.refresh_loaded();
+        }
         let l0 = &mut self.levels[0];
         let (nx, ny) = (l0.nx, l0.ny);
         if !l0.xop.is_empty() {
@@ -146,6 +188,11 @@ impl Hierarchy {
     /// Computes every value of the hierarchy for operator `a` (same size as level 0).
     pub(super) fn refresh(&mut self, a: &Stencil9) -> Result<(), SolveError> {
         self.load_fine(a)?;
+        self.refresh_loaded()
+    }
+
+    /// Computes every value of the hierarchy for the operator loaded into level 0.
+    pub(super) fn refresh_loaded(&mut self) -> Result<(), SolveError> {
         let transpose = self.params.restriction == Restriction::Transpose;
         let nl = self.levels.len();
         for l in 0..nl {
@@ -168,10 +215,8 @@ impl Hierarchy {
     }
 }
 
-/// Copies the caller's operator, zeroing couplings that point outside the grid.
-fn copy_clipped(a: &Stencil9, out: &mut [[f64; 9]]) {
-    let (nx, ny) = (a.nx(), a.ny());
-    out.copy_from_slice(a.coefs());
+/// Zeroes the couplings of the `nx × ny` rows `out` that point outside the grid.
+fn clip(out: &mut [[f64; 9]], nx: usize, ny: usize) {
     let clip = |row: &mut [f64; 9], ks: &[usize]| {
         for &kk in ks {
             row[kk] = 0.0;

@@ -810,3 +810,45 @@ fn bicgstab_with_lagged_preconditioner() {
         Err(SolveError::NotSetUp)
     );
 }
+
+/// `adopt` takes the operator over (the caller's is left empty), solves exactly as `setup`
+/// from a copy does (bit for bit), and `give_back` returns the same rows; afterwards the
+/// solver is not set up until its next setup. The Picard systems rely on this to keep one
+/// operator, not two (#16).
+#[test]
+fn adopt_solves_as_setup_and_gives_the_operator_back() {
+    let a = mixed(37, 29, 0.8, 3.0, 0.5);
+    let n = a.len();
+    let b: Vec<f64> = (0..n).map(|p| ((p * 7919) % 101) as f64 - 50.0).collect();
+    let ctl = SolveControl {
+        rel_tol: 1e-9,
+        max_iter: 30,
+    };
+    let mut copy = MultigridSafe::new(MgParams::default());
+    copy.setup(&a).unwrap();
+    let mut x_copy = vec![0.0; n];
+    let info_copy = copy.solve(&b, &mut x_copy, &ctl).unwrap();
+    for small in [false, true] {
+        let mut taken = MultigridSafe::new(MgParams::default());
+        let mut own = a.clone();
+        taken.setup(&a).unwrap();
+        taken.adopt(&mut own, small).unwrap();
+        assert!(own.is_empty(), "adopt leaves the caller's operator empty");
+        let mut x = vec![0.0; n];
+        let info = taken.solve(&b, &mut x, &ctl).unwrap();
+        assert_eq!(info, info_copy);
+        assert_eq!(x, x_copy, "adopt (small = {small}) solves as setup does");
+        assert_eq!(taken.give_back(), Some(a.clone()), "the same rows back");
+        assert_eq!(taken.give_back(), None, "given back once");
+        assert_eq!(
+            taken.solve(&b, &mut x, &ctl),
+            Err(SolveError::NotSetUp),
+            "no operator, no solve"
+        );
+        // a setup from a copy works again after the operator went back
+        taken.update(&a).unwrap();
+        let mut y = vec![0.0; n];
+        taken.solve(&b, &mut y, &ctl).unwrap();
+        assert_eq!(y, x_copy);
+    }
+}

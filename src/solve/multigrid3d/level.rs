@@ -61,9 +61,6 @@ pub(super) const fn off27(m: usize) -> [isize; 3] {
     ]
 }
 
-/// The 19-point rows of one k-plane and the rows they are copied from.
-type PlaneRows<'a> = (&'a mut [[f64; 19]], &'a [[f64; 19]]);
-
 /// One level: operator, line factors and (if not the coarsest) the transfer stars to the next.
 #[derive(Debug)]
 pub(super) struct Level {
@@ -218,17 +215,41 @@ impl Level {
     /// Copies the 19-point operator into the 19-point rows of the fine level (couplings
     /// leaving the grid dropped) and drops its 27-point rows, if any.
     pub fn embed(&mut self, a: &Stencil19) -> Result<(), SolveError> {
-        let [nx, ny, _] = self.dims;
+        assert_eq!(a.dims(), self.dims);
+        self.a19.clear();
+        self.a19.extend_from_slice(a.coefs());
+        self.clip_fine()
+    }
+
+    /// Takes the rows of a 19-point operator of this level's size over as the fine level's
+    /// (no copy; [`crate::solve::LinearSolver::adopt`]), couplings leaving the grid dropped.
+    pub fn embed_rows(&mut self, rows: Vec<[f64; 19]>) -> Result<(), SolveError> {
+        assert_eq!(rows.len(), self.n());
+        self.a19 = rows;
+        self.clip_fine()
+    }
+
+    /// Hands the fine level's 19-point rows back, leaving it without an operator.
+    pub fn take_rows(&mut self) -> Vec<[f64; 19]> {
+        std::mem::take(&mut self.a19)
+    }
+
+    /// Zeroes the couplings of the 19-point rows that leave the grid, drops the 27-point
+    /// rows, and rejects a non-finite coefficient.
+    fn clip_fine(&mut self) -> Result<(), SolveError> {
+        let dims = self.dims;
+        let [nx, ny, _] = dims;
         let plane = nx * ny;
         let n = self.n();
         self.a = Vec::new();
-        self.a19.resize(n, [0.0; 19]);
-        let fill = |(k, (rows19, src)): (usize, PlaneRows)| {
+        let fill = |(k, rows19): (usize, &mut [[f64; 19]])| {
             let mut bad = None;
-            for (q, (row19, src)) in rows19.iter_mut().zip(src).enumerate() {
-                let ins = a.inside(q % nx, q / nx, k);
+            for (q, row19) in rows19.iter_mut().enumerate() {
+                let ins = Stencil19::inside_of(dims, q % nx, q / nx, k);
                 for m in 0..19 {
-                    row19[m] = if ins[m] { src[m] } else { 0.0 };
+                    if !ins[m] {
+                        row19[m] = 0.0;
+                    }
                 }
                 if bad.is_none() && !row19.iter().all(|v| v.is_finite()) {
                     bad = Some(k * plane + q);
@@ -239,14 +260,12 @@ impl Level {
         let bad = if use_par(n) {
             self.a19
                 .par_chunks_mut(plane)
-                .zip(a.coefs().par_chunks(plane))
                 .enumerate()
                 .filter_map(fill)
                 .min()
         } else {
             self.a19
                 .chunks_mut(plane)
-                .zip(a.coefs().chunks(plane))
                 .enumerate()
                 .filter_map(fill)
                 .min()

@@ -183,7 +183,7 @@ impl Multigrid3 {
         })
     }
 
-    fn setup_values(&mut self, a: &Stencil19) -> Result<(), SolveError> {
+    fn setup_values(&mut self, a: Fine) -> Result<(), SolveError> {
         let dims = level_dims(a.dims(), &self.params);
         let reuse = self.h.as_ref().is_some_and(|h| {
             h.levels.len() == dims.len() && h.levels.iter().zip(&dims).all(|(l, d)| l.dims == *d)
@@ -206,7 +206,7 @@ impl Multigrid3 {
                 (levels, dims.iter().map(|_| Planes::default()).collect())
             }
         };
-        levels[0].embed(a)?;
+        a.load(&mut levels[0])?;
         let nl = levels.len();
         for l in 0..nl - 1 {
             let (fine, coarse) = levels.split_at_mut(l + 1);
@@ -238,19 +238,23 @@ impl Multigrid3 {
     /// saves their setup, 0.6 s of a 129³ update. A full setup when there is no hierarchy of
     /// this size.
     pub fn update(&mut self, a: &Stencil19) -> Result<(), SolveError> {
+        self.update_values(Fine::Copy(a))
+    }
+
+    fn update_values(&mut self, a: Fine) -> Result<(), SolveError> {
         let fits = self
             .h
             .as_ref()
             .is_some_and(|h| h.levels[0].dims == a.dims());
         if !fits {
-            return LinearSolver::<Stencil19>::setup(self, a);
+            return self.setup_checked(a);
         }
         let smoother = self.params.smoother;
         let h = self.h.as_mut().expect("hierarchy checked");
         let res = (|| {
             let single = h.levels.len() == 1;
             let lev = &mut h.levels[0];
-            lev.embed(a)?;
+            a.load(lev)?;
             if single {
                 h.coarse = CoarseLu::factor(&h.levels[0])?;
                 return Ok(());
@@ -267,13 +271,10 @@ impl Multigrid3 {
     }
 }
 
-impl LinearSolver<Stencil19> for Multigrid3 {
-    fn update(&mut self, a: &Stencil19) -> Result<(), SolveError> {
-        Multigrid3::update(self, a)
-    }
-
-    fn setup(&mut self, a: &Stencil19) -> Result<(), SolveError> {
-        if a.is_empty() {
+impl Multigrid3 {
+    /// A full setup for the fine operator `a`; no hierarchy after a failure.
+    fn setup_checked(&mut self, a: Fine) -> Result<(), SolveError> {
+        if a.dims().iter().product::<usize>() == 0 {
             self.h = None;
             return Err(SolveError::Singular("multigrid: empty operator".into()));
         }
@@ -283,9 +284,64 @@ impl LinearSolver<Stencil19> for Multigrid3 {
         }
         res
     }
+}
+
+/// The fine operator of a setup: the caller's, copied, or its rows taken over
+/// ([`LinearSolver::adopt`]).
+enum Fine<'a> {
+    Copy(&'a Stencil19),
+    Take([usize; 3], Vec<[f64; 19]>),
+}
+
+impl Fine<'_> {
+    fn dims(&self) -> [usize; 3] {
+        match self {
+            Fine::Copy(a) => a.dims(),
+            Fine::Take(dims, _) => *dims,
+        }
+    }
+
+    /// Makes it the operator of the fine level `lev`.
+    fn load(self, lev: &mut Level) -> Result<(), SolveError> {
+        match self {
+            Fine::Copy(a) => lev.embed(a),
+            Fine::Take(_, rows) => lev.embed_rows(rows),
+        }
+    }
+}
+
+impl LinearSolver<Stencil19> for Multigrid3 {
+    fn update(&mut self, a: &Stencil19) -> Result<(), SolveError> {
+        Multigrid3::update(self, a)
+    }
+
+    fn setup(&mut self, a: &Stencil19) -> Result<(), SolveError> {
+        self.setup_checked(Fine::Copy(a))
+    }
+
+    fn adopt(&mut self, a: &mut Stencil19, small: bool) -> Result<(), SolveError> {
+        let dims = a.dims();
+        let rows = std::mem::replace(a, Stencil19::zeros(0, 0, 0)).into_coefs();
+        let fine = Fine::Take(dims, rows);
+        if small {
+            self.update_values(fine)
+        } else {
+            self.setup_checked(fine)
+        }
+    }
+
+    fn give_back(&mut self) -> Option<Stencil19> {
+        let l0 = &mut self.h.as_mut()?.levels[0];
+        (l0.n() > 0 && l0.a19.len() == l0.n())
+            .then(|| Stencil19::from_coefs(l0.dims, l0.take_rows()))
+    }
 
     fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError> {
-        let h = self.h.as_ref().ok_or(SolveError::NotSetUp)?;
+        let h = self
+            .h
+            .as_ref()
+            .filter(|h| h.levels[0].a19.len() == h.levels[0].n())
+            .ok_or(SolveError::NotSetUp)?;
         let l0 = &h.levels[0];
         let n = l0.n();
         if b.len() != n || x.len() != n {

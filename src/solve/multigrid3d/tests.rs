@@ -490,3 +490,38 @@ fn fine_level_without_27_point_rows_builds_the_same_hierarchy() {
             .any(|r| r.iter().filter(|v| **v != 0.0).count() > 19));
     }
 }
+
+/// `adopt` takes the operator over (the caller's is left empty) and solves bit for bit as a
+/// `setup` from a copy; `give_back` returns the same rows, after which the solver is not set
+/// up (#16: the volume Picard system and the multigrid share one 19-point operator).
+#[test]
+fn adopt_solves_as_setup_and_gives_the_operator_back() {
+    let a = aniso(13, 11, 9, 1, 1e-2);
+    let n = a.len();
+    let b: Vec<f64> = (0..n).map(|p| ((p * 7919) % 101) as f64 - 50.0).collect();
+    let ctl = SolveControl {
+        rel_tol: 1e-9,
+        max_iter: 30,
+    };
+    let mut copy = Multigrid3::default();
+    copy.setup(&a).unwrap();
+    let mut x_copy = vec![0.0; n];
+    let info_copy = copy.solve(&b, &mut x_copy, &ctl).unwrap();
+    for small in [false, true] {
+        let mut taken = Multigrid3::default();
+        taken.setup(&a).unwrap();
+        let mut own = a.clone();
+        taken.adopt(&mut own, small).unwrap();
+        assert!(own.is_empty(), "adopt leaves the caller's operator empty");
+        let mut x = vec![0.0; n];
+        assert_eq!(taken.solve(&b, &mut x, &ctl).unwrap(), info_copy);
+        assert_eq!(x, x_copy, "adopt (small = {small}) solves as setup does");
+        assert_eq!(taken.give_back(), Some(a.clone()), "the same rows back");
+        assert_eq!(taken.give_back(), None, "given back once");
+        assert_eq!(
+            taken.solve(&b, &mut x, &ctl),
+            Err(SolveError::NotSetUp),
+            "no operator, no solve"
+        );
+    }
+}
