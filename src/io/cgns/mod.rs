@@ -22,6 +22,17 @@ pub use read::read_cgns;
 /// CGNS's name buffers: 32 characters and a NUL.
 type NameBuf = [c_char; 33];
 
+/// The CGNS mid-level library keeps global state (its open-file table, the `cg_goto`
+/// position, the error message) and is not thread-safe: every use of it holds this lock for
+/// the whole file, so that files written or read at once (outputs in parallel, tests) do not
+/// interleave their calls.
+static LIBRARY: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Holds [`LIBRARY`] (a panic elsewhere while holding it leaves no library state to fear).
+fn library() -> std::sync::MutexGuard<'static, ()> {
+    LIBRARY.lock().unwrap_or_else(|p| p.into_inner())
+}
+
 /// An open CGNS file; closed on drop.
 struct File<'a> {
     path: &'a Path,
@@ -173,6 +184,7 @@ fn bc_kind(t: BCType_t) -> BcKind {
 /// more than 2³¹ nodes in a block; [`Error::Format`] with the library's message if a CGNS call
 /// fails; [`Error::Io`].
 pub fn write_cgns(path: &Path, blocks: &[(String, Block)], conn: &ConnFile) -> Result<()> {
+    let _one_at_a_time = library();
     let place = path.display().to_string();
     let Some((_, first)) = blocks.first() else {
         return Err(Error::input(place, "no blocks"));

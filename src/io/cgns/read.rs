@@ -25,6 +25,7 @@ fn name_of(b: &NameBuf) -> String {
 /// [`Error::Format`] naming the file for anything but structured zones with X, Y (Z)
 /// coordinates and point-range BCs, or a failed library call.
 pub fn read_cgns(path: &Path) -> Result<(Vec<(String, Block)>, ConnFile)> {
+    let _one_at_a_time = super::library();
     let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
     if meta.is_dir() {
         return Err(Error::input(path.display().to_string(), "is a directory"));
