@@ -12,6 +12,16 @@ use ellipgrid::io::mesh::{one_to_one, sides_as_patches};
 use ellipgrid::io::Block;
 use ellipgrid::{Grid2, Grid3};
 
+/// One test at a time: HDF5 locks a file through its open file description, and a CLI
+/// subprocess spawned by another test thread while this process has a CGNS file open
+/// inherits that descriptor (HDF5 does not mark it close-on-exec) and with it the lock, so
+/// reopening the file here fails ("cgio_open_file: File-open error") until the child exits.
+static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn serial() -> std::sync::MutexGuard<'static, ()> {
+    SERIAL.lock().unwrap_or_else(|p| p.into_inner())
+}
+
 /// A connectivity in a canonical form: each interface from its lower (block, range) side,
 /// that side's range ascending (the other's following it), everything sorted.
 fn sorted(mut c: ConnFile) -> ConnFile {
@@ -33,6 +43,7 @@ fn sorted(mut c: ConnFile) -> ConnFile {
 
 #[test]
 fn c_grid_round_trip_through_cgns_keeps_nodes_and_connectivity() {
+    let _serial = serial();
     let d = tempfile::tempdir().unwrap();
     let case = root().join("examples/rae2822_cgrid.toml");
     let o = ellipgrid(
@@ -96,6 +107,7 @@ fn c_grid_round_trip_through_cgns_keeps_nodes_and_connectivity() {
 
 #[test]
 fn transforms_of_turned_blocks_and_volumes() {
+    let _serial = serial();
     // Block b is block a's neighbour across x = 1, turned by 90° (its i runs along y down).
     let a = Block::Planar(Grid2::from_fn(3, 4, |i, j| {
         [i as f64 * 0.5, j as f64 / 3.0]
@@ -157,6 +169,7 @@ fn transforms_of_turned_blocks_and_volumes() {
 
 #[test]
 fn unreadable_cgns_is_a_clear_error() {
+    let _serial = serial();
     let d = tempfile::tempdir().unwrap();
     std::fs::write(d.path().join("junk.cgns"), b"not a cgns file").unwrap();
     let o = ellipgrid(d.path(), &["convert", "junk.cgns", "out.x"]);
@@ -168,6 +181,7 @@ fn unreadable_cgns_is_a_clear_error() {
 
 #[test]
 fn smooth_reads_cgns_and_keeps_names_connectivity_and_boundary_nodes() {
+    let _serial = serial();
     // The NACA 0012 O-grid's four blocks as CGNS; smooth regrids their interiors from the
     // transfinite start the Plot3D would give: boundary nodes bit for bit, the connectivity
     // and the block names carried to the CGNS output, the solver mesh from it merges.
