@@ -89,7 +89,15 @@ pub(crate) trait NewtonSystem: System + Sync {
     fn picard_ready(&mut self);
     /// Sets the corrections to `f` times the stacked `delta` (the coordinates one after the
     /// other) and applies them ([`System::apply`]); returns its result.
-    fn apply_scaled(&mut self, delta: &[f64], f: f64, largest: f64) -> f64;
+    fn apply_scaled(&mut self, delta: &[f64], f: f64, largest: f64) -> f64 {
+        let n = self.nodes();
+        for (c, uc) in self.linear().u.iter_mut().enumerate() {
+            uc.par_iter_mut()
+                .zip(&delta[c * n..(c + 1) * n])
+                .for_each(|(u, d)| *u = f * d);
+        }
+        self.apply(largest)
+    }
 }
 
 /// Buffers of the Newton steps of one solve, the coordinates one after the other.

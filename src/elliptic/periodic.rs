@@ -271,16 +271,6 @@ impl<const D: usize> NewtonSystem for SystemP<'_, D> {
     fn picard_ready(&mut self) {
         self.damp = DAMPING;
     }
-
-    fn apply_scaled(&mut self, delta: &[f64], f: f64, largest: f64) -> f64 {
-        let n = self.a.len();
-        for (c, uc) in self.u.iter_mut().enumerate() {
-            uc.par_iter_mut()
-                .zip(&delta[c * n..(c + 1) * n])
-                .for_each(|(u, d)| *u = f * d);
-        }
-        picard::System::apply(self, largest)
-    }
 }
 
 /// Solves the periodic grid system [24] by Picard iteration from `x` (its rows j = 0 and

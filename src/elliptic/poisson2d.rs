@@ -415,16 +415,6 @@ impl<const D: usize> NewtonSystem for System2<'_, D> {
     fn picard_ready(&mut self) {
         self.blocks = false;
     }
-
-    fn apply_scaled(&mut self, delta: &[f64], f: f64, largest: f64) -> f64 {
-        let n = self.a.len();
-        for (c, uc) in self.u.iter_mut().enumerate() {
-            uc.par_iter_mut()
-                .zip(&delta[c * n..(c + 1) * n])
-                .for_each(|(u, d)| *u = f * d);
-        }
-        picard::System::apply(self, largest)
-    }
 }
 
 /// Convenience: the start grid with the boundary of `b` and the solve of [24] from it.
