@@ -383,3 +383,57 @@ fn bare_surfaces_of_a_geometric_set_are_read_and_gridded_on_their_surfaces() {
         assert!(unfolded(g), "block {k} folds");
     }
 }
+
+#[test]
+fn entity_forms_of_other_cad_systems_give_the_same_face() {
+    // cone_patch.step rewritten as Creo, Inventor and Rhino 8 write (data/step/
+    // make_vendor_forms.py): the semi-angle in degrees under a DEGREE unit context, the two
+    // circular edges on TRIMMED_CURVEs (one named `$`, one running against its circle), an
+    // unset name on a placement, a placement along x without a reference direction. truck-
+    // stepio alone loses two edges and reads the angle as radians.
+    let vendor = "cone_patch_vendor_forms.step";
+    for n in [9, 17] {
+        let (a, b) = (grid("cone_patch.step", 1, n), grid(vendor, 1, n));
+        let d = distance(&a.result.grid, &b.result.grid);
+        assert!(d < 1e-9, "{n} × {n}: the grids differ by {d:e}");
+    }
+    // Through the CLI: listed as a block face, nothing printed on stderr, the same grid.
+    let dir = tempfile::tempdir().unwrap();
+    let path = file(vendor);
+    let o = ellipgrid(dir.path(), &["step", "list", path.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(o.stderr.is_empty(), "{}", text(&o));
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains("face 1: cone, block face"),
+        "{}",
+        text(&o)
+    );
+    for (f, out) in [("cone_patch.step", "a.x"), (vendor, "b.x")] {
+        let o = ellipgrid(
+            dir.path(),
+            &[
+                "step",
+                "grid",
+                file(f).to_str().unwrap(),
+                "--face",
+                "1",
+                "--ni",
+                "17",
+                "--nj",
+                "17",
+                "-o",
+                out,
+            ],
+        );
+        assert!(o.status.success(), "{}", text(&o));
+    }
+    let read = |f: &str| {
+        let mut p = ellipgrid::io::plot3d::read_plot3d(&dir.path().join(f)).unwrap();
+        match p.blocks.remove(0) {
+            ellipgrid::io::Block::Surface(g) => g,
+            _ => panic!("{f}: not a surface block"),
+        }
+    };
+    let d = distance(&read("a.x"), &read("b.x"));
+    assert!(d < 1e-9, "CLI grids differ by {d:e}");
+}

@@ -3,25 +3,8 @@
 //! are undefined outside [t_p, t_n]), and the workaround for truck-stepio's pcurves.
 
 use super::LoopEdge;
-use std::borrow::Cow;
 use truck_geometry::prelude::{ParametricCurve, Point3};
 use truck_stepio::r#in::alias::{Curve2D, Curve3D};
-
-/// Makes truck-stepio read every `SURFACE_CURVE` / `SEAM_CURVE` through its 3D curve: with
-/// `.PCURVE_S1.` / `.PCURVE_S2.` as the master representation it builds the edge from the
-/// pcurve, and fails on surfaces whose point search needs a hint (spheres: "the point is not
-/// on surface", the edge is lost) or leaves B-spline pcurves untrimmed. The 3D curve is the
-/// same edge within the file's tolerance.
-pub(super) fn prefer_3d_curves(text: &str) -> Cow<'_, str> {
-    if text.contains(".PCURVE_S1.") || text.contains(".PCURVE_S2.") {
-        Cow::Owned(
-            text.replace(".PCURVE_S1.", ".CURVE_3D.")
-                .replace(".PCURVE_S2.", ".CURVE_3D."),
-        )
-    } else {
-        Cow::Borrowed(text)
-    }
-}
 
 /// (first, last knot of the valid range, all knots) of a B-spline or NURBS curve, 3D or 2D
 /// under a pcurve.
@@ -54,6 +37,18 @@ fn valid_range(c: &Curve3D) -> Option<(f64, f64)> {
         .map(|k| (k.0, k.1))
         .or_else(|| c.try_range_tuple())
         .filter(|(a, b)| a.is_finite() && b.is_finite() && b > a)
+}
+
+/// The curve's type, for messages.
+fn kind(c: &Curve3D) -> &'static str {
+    match c {
+        Curve3D::Line(_) => "line",
+        Curve3D::Polyline(_) => "polyline",
+        Curve3D::Conic(_) => "conic",
+        Curve3D::BSplineCurve(_) => "B-spline",
+        Curve3D::PCurve(_) => "pcurve",
+        Curve3D::NurbsCurve(_) => "NURBS",
+    }
 }
 
 fn dist(c: &Curve3D, t: f64, p: Point3) -> f64 {
@@ -112,7 +107,11 @@ pub(super) fn loop_edge(
     tol: f64,
 ) -> Result<LoopEdge, String> {
     let Some((a, b)) = valid_range(curve) else {
-        return Err("its curve has no finite parameter range".into());
+        return Err(format!(
+            "its curve ({}) has no finite parameter range: {:?}",
+            kind(curve),
+            curve.try_range_tuple()
+        ));
     };
     let near = |t: f64, p: Point3| dist(curve, t, p) <= tol;
     if near(a, p0) && near(b, p1) {
@@ -176,15 +175,5 @@ mod tests {
         // The whole curve: its range as is.
         let w = loop_edge(&c, (c.subs(0.0), c.subs(1.0)), false, 1e-9).unwrap();
         assert_eq!((w.range, w.forward), ((0.0, 1.0), false));
-    }
-
-    #[test]
-    fn pcurve_masters_are_rewritten() {
-        let t = "#47 = SURFACE_CURVE('',#48,(#52),.PCURVE_S1.);";
-        assert_eq!(
-            prefer_3d_curves(t),
-            "#47 = SURFACE_CURVE('',#48,(#52),.CURVE_3D.);"
-        );
-        assert!(matches!(prefer_3d_curves("#1 = LINE();"), Cow::Borrowed(_)));
     }
 }

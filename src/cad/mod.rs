@@ -14,6 +14,7 @@
 //! | `split` | [`grid_face_blocks`]: any face as one block or several (cuts shared bit for bit) |
 //! | `write` | [`write_step_surface`]: one B-spline face bounded by its four iso-parameter sides |
 //! | `prescan` | bounds on the STEP text before truck-stepio expands it |
+//! | `rewrite` | entity forms truck-stepio loses, rewritten in the text to ones it reads |
 //!
 //! Two routes grid a face ([`Route`]):
 //! - an *untrimmed four-sided patch* (a B-spline or NURBS surface whose boundary edges lie on
@@ -50,6 +51,7 @@ mod face;
 mod holes;
 mod patch;
 mod prescan;
+mod rewrite;
 mod split;
 mod trim;
 mod write;
@@ -217,7 +219,11 @@ pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
 /// As [`read_step_faces`].
 pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
     prescan::check(text).map_err(|m| Error::format(path, m))?;
-    let text = edge::prefer_3d_curves(text);
+    let text = rewrite::prefer_3d_curves(text);
+    let text = rewrite::unnamed_labels(&text);
+    let text = rewrite::untrim_curves(&text);
+    let text = rewrite::default_ref_directions(&text);
+    let text = rewrite::radian_cone_angles(&text);
     let shells = quietly(|| parse_shells(&text))
         .map_err(|p| {
             let msg = p

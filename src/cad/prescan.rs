@@ -237,7 +237,7 @@ fn check_references(text: &str) -> Result<(), String> {
 }
 
 /// The top-level arguments of the list that starts at `s` (with its `(`), as text.
-fn top_level_args(s: &str) -> Vec<&str> {
+pub(super) fn top_level_args(s: &str) -> Vec<&str> {
     let (mut depth, mut in_str, mut start) = (0usize, false, 1usize);
     let mut out = Vec::new();
     for (i, c) in s.char_indices() {

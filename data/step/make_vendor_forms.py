@@ -1,0 +1,51 @@
+#!/usr/bin/env python3
+"""Writes cone_patch_vendor_forms.step: the face of cone_patch.step with the entity forms
+that CAD systems write and truck-stepio 0.3 alone loses, so that the same face must come out:
+- plane angles in degrees (a CONVERSION_BASED_UNIT 'DEGREE' in the unit context, as Creo,
+  Inventor, Pro/E and UG write): the cone's semi-angle atan(1/2) written as 26.565051177078;
+- the edge along the circle of radius 2 (z = 0) on a TRIMMED_CURVE($, circle, (point),
+  (point), .T., .CARTESIAN.) whose circle's AXIS2_PLACEMENT_3D is named `$` (Rhino 8);
+- the edge along the circle of radius 1 (z = 2) on a TRIMMED_CURVE that runs against its
+  circle (sense .F., trims by point), the edge's same_sense .F. accordingly;
+- an AXIS2_PLACEMENT_3D along the x axis without a reference direction (CATIA), for a
+  placement the face does not use.
+
+    python3 make_vendor_forms.py data/step
+"""
+import math
+import pathlib
+import sys
+
+
+def main():
+    out = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
+    here = pathlib.Path(__file__).parent
+    text = (here / "cone_patch.step").read_text()
+    deg = math.degrees(math.atan(0.5))
+
+    def sub(old, new):
+        nonlocal text
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+
+    sub("CONICAL_SURFACE('',#34,2.,0.463647609001)", f"CONICAL_SURFACE('',#34,2.,{deg:.12f})")
+    sub("#93 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );",
+        "#93 = ( CONVERSION_BASED_UNIT('DEGREE',#97) NAMED_UNIT(*) PLANE_ANGLE_UNIT() );")
+    sub("#61 = EDGE_CURVE('',#46,#62,#64,.T.);", "#61 = EDGE_CURVE('',#46,#62,#99,.T.);")
+    sub("#66 = AXIS2_PLACEMENT_3D('',#67,#68,#69);", "#66 = AXIS2_PLACEMENT_3D($,#67,#68,#69);")
+    sub("#21 = EDGE_CURVE('',#22,#24,#26,.T.);", "#21 = EDGE_CURVE('',#22,#24,#100,.F.);")
+    extra = [
+        "#97 = PLANE_ANGLE_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(1.745329251994E-02),#98);",
+        "#98 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );",
+        "#99 = TRIMMED_CURVE($,#65,(#47),(#63),.T.,.CARTESIAN.);",
+        "#100 = TRIMMED_CURVE($,#27,(#25),(#23),.F.,.CARTESIAN.);",
+        "#101 = AXIS2_PLACEMENT_3D('',#29,#102,$);",
+        "#102 = DIRECTION('',(1.,0.,0.));",
+        "#103 = CIRCLE('',#101,1.);",
+    ]
+    sub("ENDSEC;\nEND-ISO-10303-21;", "\n".join(extra) + "\nENDSEC;\nEND-ISO-10303-21;")
+    (out / "cone_patch_vendor_forms.step").write_text(text)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,654 @@
+//! Rewrites of a STEP file's text before truck-stepio reads it, each for an entity form that
+//! real CAD systems write and truck-stepio 0.3 loses (the edge or face then disappears, or
+//! its curve evaluates to NaN). Each keeps the geometry the file describes:
+//! - [`prefer_3d_curves`]: `SURFACE_CURVE`s read through their 3D curve;
+//! - [`unnamed_labels`]: a geometric or topological entity whose name is `$` gets `''`
+//!   (Rhino 8 writes `AXIS2_PLACEMENT_3D($, …)`; the name is a mandatory label, and the
+//!   reader drops the entity and everything built on it);
+//! - [`untrim_curves`]: an edge or a swept surface on a `TRIMMED_CURVE` refers to the basis
+//!   curve (truck-stepio reads no `TRIMMED_CURVE`: Rhino 8 bounds its circular edges so,
+//!   ANSA and Creo the profiles of extrusions; the edge or face was lost);
+//! - [`default_ref_directions`]: an `AXIS2_PLACEMENT_3D` without a reference direction gets
+//!   ISO 10303-42's default (truck takes (1, 0, 0) always, which is NaN for an axis along x:
+//!   CATIA writes such circles);
+//! - [`radian_cone_angles`]: a cone's semi-angle in the file's plane angle unit (Creo,
+//!   Inventor, Pro/E, UG write degrees) is written in radians, which truck assumes.
+
+use super::prescan::top_level_args;
+use std::borrow::Cow;
+use std::collections::HashMap;
+
+/// Makes truck-stepio read every `SURFACE_CURVE` / `SEAM_CURVE` through its 3D curve: with
+/// `.PCURVE_S1.` / `.PCURVE_S2.` as the master representation it builds the edge from the
+/// pcurve, and fails on surfaces whose point search needs a hint (spheres: "the point is not
+/// on surface", the edge is lost) or leaves B-spline pcurves untrimmed. The 3D curve is the
+/// same edge within the file's tolerance.
+pub(super) fn prefer_3d_curves(text: &str) -> Cow<'_, str> {
+    if text.contains(".PCURVE_S1.") || text.contains(".PCURVE_S2.") {
+        Cow::Owned(
+            text.replace(".PCURVE_S1.", ".CURVE_3D.")
+                .replace(".PCURVE_S2.", ".CURVE_3D."),
+        )
+    } else {
+        Cow::Borrowed(text)
+    }
+}
+
+/// The geometric and topological entity types truck-stepio reads, whose first attribute is
+/// the item's mandatory `name` label.
+const LABELLED: &[&str] = &[
+    "CARTESIAN_POINT",
+    "DIRECTION",
+    "VECTOR",
+    "AXIS1_PLACEMENT",
+    "AXIS2_PLACEMENT_2D",
+    "AXIS2_PLACEMENT_3D",
+    "LINE",
+    "POLYLINE",
+    "CIRCLE",
+    "ELLIPSE",
+    "HYPERBOLA",
+    "PARABOLA",
+    "TRIMMED_CURVE",
+    "B_SPLINE_CURVE_WITH_KNOTS",
+    "BEZIER_CURVE",
+    "QUASI_UNIFORM_CURVE",
+    "UNIFORM_CURVE",
+    "PCURVE",
+    "SURFACE_CURVE",
+    "SEAM_CURVE",
+    "PLANE",
+    "SPHERICAL_SURFACE",
+    "CYLINDRICAL_SURFACE",
+    "TOROIDAL_SURFACE",
+    "CONICAL_SURFACE",
+    "B_SPLINE_SURFACE_WITH_KNOTS",
+    "UNIFORM_SURFACE",
+    "QUASI_UNIFORM_SURFACE",
+    "BEZIER_SURFACE",
+    "SURFACE_OF_LINEAR_EXTRUSION",
+    "SURFACE_OF_REVOLUTION",
+    "VERTEX_POINT",
+    "EDGE_CURVE",
+    "EDGE_LOOP",
+    "FACE_BOUND",
+    "FACE_OUTER_BOUND",
+    "ADVANCED_FACE",
+    "FACE_SURFACE",
+    "ORIENTED_FACE",
+    "CLOSED_SHELL",
+    "OPEN_SHELL",
+    "ORIENTED_CLOSED_SHELL",
+    "MANIFOLD_SOLID_BREP",
+];
+
+/// Every entity of [`LABELLED`] type whose name is `$` (unset) gets the empty name `''`;
+/// `REPRESENTATION_ITEM($)` in complex instances likewise.
+pub(super) fn unnamed_labels(text: &str) -> Cow<'_, str> {
+    if !text.contains("($") {
+        return Cow::Borrowed(text);
+    }
+    let mut edits = Vec::new();
+    for e in instances(text, LABELLED) {
+        let a = top_level_args(&text[e.open..]);
+        if let Some(name) = a.first().filter(|n| **n == "$") {
+            let at = offset(text, name);
+            edits.push((at, at + 1, "''".to_string()));
+        }
+    }
+    let out = apply(text, edits);
+    if out.contains("REPRESENTATION_ITEM($)") {
+        Cow::Owned(out.replace("REPRESENTATION_ITEM($)", "REPRESENTATION_ITEM('')"))
+    } else {
+        out
+    }
+}
+
+/// A simple entity instance `#id = NAME(…)`: its id, type name and the byte where its
+/// argument list opens.
+struct Instance<'a> {
+    id: u64,
+    name: &'a str,
+    /// where `#id` starts
+    start: usize,
+    open: usize,
+}
+
+/// The simple entity instances of a STEP text whose type is one of `names` (complex
+/// instances `#id = (A(…) B(…))` are left out).
+fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> {
+    let b = text.as_bytes();
+    let mut out = Vec::new();
+    let (mut i, mut depth, mut in_str) = (0usize, 0usize, false);
+    while i < b.len() {
+        let c = b[i];
+        i += 1;
+        if in_str {
+            in_str = c != b'\'';
+            continue;
+        }
+        match c {
+            b'\'' => in_str = true,
+            b'(' => depth += 1,
+            b')' => depth = depth.saturating_sub(1),
+            b'#' if depth == 0 => {
+                let start = i - 1;
+                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
+                let Ok(id) = text[i..end].parse::<u64>() else {
+                    continue;
+                };
+                i = end;
+                let rest = text[end..].trim_start();
+                let Some(rest) = rest.strip_prefix('=') else {
+                    continue;
+                };
+                let rest = rest.trim_start();
+                let len = rest
+                    .bytes()
+                    .take_while(|c| c.is_ascii_alphanumeric() || *c == b'_')
+                    .count();
+                let name = &rest[..len];
+                let after = rest[len..].trim_start();
+                if len > 0 && after.starts_with('(') && names.contains(&name) {
+                    out.push(Instance {
+                        id,
+                        name,
+                        start,
+                        open: text.len() - after.len(),
+                    });
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// How often each id of `ids` is referred to (`#n` outside strings and not defining `#n`).
+fn reference_counts<V>(text: &str, ids: &HashMap<u64, V>) -> HashMap<u64, usize> {
+    let b = text.as_bytes();
+    let mut out: HashMap<u64, usize> = ids.keys().map(|&k| (k, 0)).collect();
+    let (mut i, mut in_str) = (0usize, false);
+    while i < b.len() {
+        let c = b[i];
+        i += 1;
+        if in_str {
+            in_str = c != b'\'';
+            continue;
+        }
+        if c == b'\'' {
+            in_str = true;
+        } else if c == b'#' {
+            let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
+            if let Ok(n) = text[i..end].parse::<u64>() {
+                if !text[end..].trim_start().starts_with('=') {
+                    if let Some(k) = out.get_mut(&n) {
+                        *k += 1;
+                    }
+                }
+            }
+            i = end;
+        }
+    }
+    out
+}
+
+/// The byte after the `;` that ends the instance whose argument list opens at `open`.
+fn statement_end(text: &str, open: usize) -> Option<usize> {
+    let (mut depth, mut in_str) = (0usize, false);
+    for (k, c) in text[open..].char_indices() {
+        match c {
+            '\'' => in_str = !in_str,
+            '(' if !in_str => depth += 1,
+            ')' if !in_str => depth = depth.checked_sub(1)?,
+            ';' if !in_str && depth == 0 => return Some(open + k + 1),
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Byte offset of `arg` (a slice of `text`) in `text`.
+fn offset(text: &str, arg: &str) -> usize {
+    arg.as_ptr() as usize - text.as_ptr() as usize
+}
+
+/// `#n` as n.
+fn reference(arg: &str) -> Option<u64> {
+    arg.strip_prefix('#')?.parse().ok()
+}
+
+/// `.T.` / `.F.` as a bool.
+fn logical(arg: &str) -> Option<bool> {
+    match arg {
+        ".T." => Some(true),
+        ".F." => Some(false),
+        _ => None,
+    }
+}
+
+/// Applies replacements (byte range, new text), which must not overlap.
+fn apply<'a>(text: &'a str, mut edits: Vec<(usize, usize, String)>) -> Cow<'a, str> {
+    if edits.is_empty() {
+        return Cow::Borrowed(text);
+    }
+    edits.sort_by_key(|e| e.0);
+    let mut out = String::with_capacity(text.len() + 64 * edits.len());
+    let mut at = 0;
+    for (from, to, new) in edits {
+        out.push_str(&text[at..from]);
+        out.push_str(&new);
+        at = to;
+    }
+    out.push_str(&text[at..]);
+    Cow::Owned(out)
+}
+
+/// Every reference to a `TRIMMED_CURVE` (through a chain of them) from an `EDGE_CURVE` or a
+/// swept surface is made a reference to the basis curve, which truck-stepio reads:
+/// - an edge's `same_sense` is flipped where the trimmed curve runs against its basis
+///   (`sense_agreement = .F.`); the edge's vertices bound its curve, so the trims add
+///   nothing an edge needs;
+/// - a `SURFACE_OF_LINEAR_EXTRUSION` or `SURFACE_OF_REVOLUTION` sweeps the whole basis curve,
+///   a surface the face's edges trim as before; where the trimmed curve ran against its
+///   basis the surface's normal turns over, so the `same_sense` of the `ADVANCED_FACE`s on it
+///   is flipped.
+pub(super) fn untrim_curves(text: &str) -> Cow<'_, str> {
+    if !text.contains("TRIMMED_CURVE") {
+        return Cow::Borrowed(text);
+    }
+    const SWEPT: [&str; 2] = ["SURFACE_OF_LINEAR_EXTRUSION", "SURFACE_OF_REVOLUTION"];
+    let all = instances(
+        text,
+        &[
+            "TRIMMED_CURVE",
+            "EDGE_CURVE",
+            SWEPT[0],
+            SWEPT[1],
+            "ADVANCED_FACE",
+        ],
+    );
+    let mut basis: HashMap<u64, (u64, bool)> = HashMap::new();
+    for e in all.iter().filter(|e| e.name == "TRIMMED_CURVE") {
+        let a = top_level_args(&text[e.open..]);
+        if let (Some(b), Some(sense)) = (
+            a.get(1).and_then(|s| reference(s)),
+            a.get(4).and_then(|s| logical(s)),
+        ) {
+            basis.insert(e.id, (b, sense));
+        }
+    }
+    // The basis at the end of the chain from `c`, and whether it runs the same way.
+    let resolve = |mut c: u64| {
+        let (mut agree, mut hops) = (true, 0);
+        while let Some(&(b, a)) = basis.get(&c) {
+            (c, agree, hops) = (b, agree == a, hops + 1);
+            if hops > basis.len() {
+                return None; // a cycle: the reader reports it
+            }
+        }
+        (hops > 0).then_some((c, agree))
+    };
+    let flag = |b: bool| if b { ".T." } else { ".F." }.to_string();
+    let mut edits = Vec::new();
+    let mut replace = |arg: &str, new: String| {
+        let at = offset(text, arg);
+        edits.push((at, at + arg.len(), new));
+    };
+    let mut reversed = std::collections::HashSet::new();
+    for e in &all {
+        let a = top_level_args(&text[e.open..]);
+        match e.name {
+            "EDGE_CURVE" => {
+                let (Some(curve), Some(same)) = (a.get(3), a.get(4)) else {
+                    continue;
+                };
+                let (Some(c), Some(s)) = (reference(curve), logical(same)) else {
+                    continue;
+                };
+                if let Some((b, agree)) = resolve(c) {
+                    replace(curve, format!("#{b}"));
+                    replace(same, flag(s == agree));
+                }
+            }
+            n if SWEPT.contains(&n) => {
+                let Some(curve) = a.get(1) else { continue };
+                if let Some((b, agree)) = reference(curve).and_then(resolve) {
+                    replace(curve, format!("#{b}"));
+                    if !agree {
+                        reversed.insert(e.id);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for e in all.iter().filter(|e| e.name == "ADVANCED_FACE") {
+        let a = top_level_args(&text[e.open..]);
+        let (Some(surface), Some(same)) = (a.get(2), a.get(3)) else {
+            continue;
+        };
+        if let (Some(s), Some(true)) = (
+            logical(same),
+            reference(surface).map(|k| reversed.contains(&k)),
+        ) {
+            replace(same, flag(!s));
+        }
+    }
+    // The trimmed curves nothing refers to any more go: the reader cannot convert them and
+    // would print an error for each.
+    let mut left = reference_counts(text, &basis);
+    for (from, to, _) in &edits {
+        if let Some(n) = reference(&text[*from..*to]).and_then(|k| left.get_mut(&k)) {
+            *n = n.saturating_sub(1);
+        }
+    }
+    let trimmed: HashMap<u64, &Instance> = all
+        .iter()
+        .filter(|e| e.name == "TRIMMED_CURVE")
+        .map(|e| (e.id, e))
+        .collect();
+    let mut gone: Vec<u64> = left
+        .iter()
+        .filter(|(_, &n)| n == 0)
+        .map(|(&k, _)| k)
+        .collect();
+    while let Some(id) = gone.pop() {
+        let Some(e) = trimmed.get(&id) else { continue };
+        let Some(end) = statement_end(text, e.open) else {
+            continue;
+        };
+        edits.push((e.start, end, String::new()));
+        // a trimmed curve of a trimmed curve: its basis loses a reference
+        if let Some(n) = basis.get(&id).and_then(|(b, _)| left.get_mut(b)) {
+            *n = n.saturating_sub(1);
+            if *n == 0 {
+                gone.push(basis[&id].0);
+            }
+        }
+    }
+    apply(text, edits)
+}
+
+/// The three numbers of a `DIRECTION('', (x, y, z))`.
+fn direction(text: &str, open: usize) -> Option<[f64; 3]> {
+    let a = top_level_args(&text[open..]);
+    let list = a.get(1)?.strip_prefix('(')?.strip_suffix(')')?;
+    let v: Vec<f64> = list
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .ok()?;
+    (v.len() == 3).then(|| [v[0], v[1], v[2]])
+}
+
+/// Every `AXIS2_PLACEMENT_3D` with an axis along ±x and no reference direction gets
+/// (0, 0, 1) as its reference direction, a new `DIRECTION` instance: ISO 10303-42's
+/// `first_proj_axis` takes (1, 0, 0) unless the axis is (1, 0, 0), then (0, 0, 1); truck
+/// takes (1, 0, 0) always, and its projection onto the plane normal to the axis is then zero
+/// (NaN after normalising: the circle's edge has no range). An axis along −x is degenerate
+/// in the standard's formula too; (0, 0, 1) is the choice there.
+pub(super) fn default_ref_directions(text: &str) -> Cow<'_, str> {
+    if !text.contains("AXIS2_PLACEMENT_3D") {
+        return Cow::Borrowed(text);
+    }
+    let all = instances(text, &["AXIS2_PLACEMENT_3D", "DIRECTION"]);
+    let dirs: HashMap<u64, [f64; 3]> = all
+        .iter()
+        .filter(|e| e.name == "DIRECTION")
+        .filter_map(|e| Some((e.id, direction(text, e.open)?)))
+        .collect();
+    let along_x = |d: [f64; 3]| {
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        n > 0.0 && (d[1] * d[1] + d[2] * d[2]).sqrt() <= 1e-12 * n
+    };
+    let mut edits = Vec::new();
+    let mut new_id = None;
+    for e in all.iter().filter(|e| e.name == "AXIS2_PLACEMENT_3D") {
+        let a = top_level_args(&text[e.open..]);
+        let (Some(axis), Some(refd)) = (a.get(2), a.get(3)) else {
+            continue;
+        };
+        if *refd != "$"
+            || !reference(axis)
+                .and_then(|k| dirs.get(&k))
+                .is_some_and(|&d| along_x(d))
+        {
+            continue;
+        }
+        let id = *new_id.get_or_insert_with(|| max_id(text) + 1);
+        let r = offset(text, refd);
+        edits.push((r, r + 1, format!("#{id}")));
+    }
+    let Some(id) = new_id else {
+        return Cow::Borrowed(text);
+    };
+    // The new DIRECTION goes before the DATA section's ENDSEC.
+    let Some(data) = text.find("DATA;") else {
+        return Cow::Borrowed(text);
+    };
+    let Some(end) = text[data..].find("ENDSEC;").map(|k| data + k) else {
+        return Cow::Borrowed(text);
+    };
+    edits.push((end, end, format!("#{id}=DIRECTION('',(0.,0.,1.));\n")));
+    apply(text, edits)
+}
+
+/// Every entity instance (`#id = …;`, simple or complex) as its id and its text after `=`
+/// up to the closing `;`, for the instances whose text contains one of `needles`.
+fn bodies<'a>(text: &'a str, needles: &[&str]) -> HashMap<u64, &'a str> {
+    let b = text.as_bytes();
+    let mut out = HashMap::new();
+    let (mut i, mut depth, mut in_str) = (0usize, 0usize, false);
+    let mut open: Option<(u64, usize)> = None;
+    while i < b.len() {
+        let c = b[i];
+        i += 1;
+        if in_str {
+            in_str = c != b'\'';
+            continue;
+        }
+        match c {
+            b'\'' => in_str = true,
+            b'(' => depth += 1,
+            b')' => depth = depth.saturating_sub(1),
+            b';' if depth == 0 => {
+                if let Some((id, from)) = open.take() {
+                    let body = &text[from..i - 1];
+                    if needles.iter().any(|n| body.contains(n)) {
+                        out.insert(id, body);
+                    }
+                }
+            }
+            b'#' if depth == 0 && open.is_none() => {
+                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
+                if let Ok(id) = text[i..end].parse::<u64>() {
+                    if let Some(rest) = text[end..].trim_start().strip_prefix('=') {
+                        open = Some((id, text.len() - rest.len()));
+                    }
+                }
+                i = end;
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The radians per unit of the plane angle unit `body` (an SI radian: 1; a conversion-based
+/// unit: its `PLANE_ANGLE_MEASURE` in radians), or `None` for a unit not understood.
+fn radians_per_unit(bodies: &HashMap<u64, &str>, body: &str) -> Option<f64> {
+    if body.contains("SI_UNIT") && body.contains(".RADIAN.") {
+        let milli = body.contains(".MILLI.");
+        return Some(if milli { 1e-3 } else { 1.0 });
+    }
+    let k = body.find("CONVERSION_BASED_UNIT")?;
+    let args = top_level_args(&body[k + "CONVERSION_BASED_UNIT".len()..]);
+    let measure = bodies.get(&reference(args.get(1)?)?)?;
+    let k = measure.find("PLANE_ANGLE_MEASURE(")? + "PLANE_ANGLE_MEASURE(".len();
+    let value: f64 = measure[k..].split(')').next()?.trim().parse().ok()?;
+    let base = top_level_args(&measure[measure.find('(')?..]);
+    let base = bodies.get(&reference(base.get(1)?)?)?;
+    (base.contains(".RADIAN.") && !base.contains(".MILLI.") && value > 0.0).then_some(value)
+}
+
+/// The cone semi-angles (`CONICAL_SURFACE`'s fourth attribute) are written in radians when
+/// every unit context of the file (`GLOBAL_UNIT_ASSIGNED_CONTEXT`) measures plane angles in
+/// one unit other than the radian (files of several parts with different angle units are
+/// left as they are).
+pub(super) fn radian_cone_angles(text: &str) -> Cow<'_, str> {
+    if !text.contains("CONICAL_SURFACE") || !text.contains("CONVERSION_BASED_UNIT") {
+        return Cow::Borrowed(text);
+    }
+    let units = bodies(text, &["PLANE_ANGLE", "GLOBAL_UNIT_ASSIGNED_CONTEXT"]);
+    let mut factors: Vec<f64> = Vec::new();
+    for body in units.values() {
+        let Some(k) = body.find("GLOBAL_UNIT_ASSIGNED_CONTEXT") else {
+            continue;
+        };
+        let args = top_level_args(&body[k + "GLOBAL_UNIT_ASSIGNED_CONTEXT".len()..]);
+        let Some(list) = args.first() else { continue };
+        for unit in top_level_args(list) {
+            let Some(u) = reference(unit).and_then(|r| units.get(&r)) else {
+                continue;
+            };
+            if u.contains("PLANE_ANGLE_UNIT") {
+                match radians_per_unit(&units, u) {
+                    Some(f) => factors.push(f),
+                    None => return Cow::Borrowed(text),
+                }
+            }
+        }
+    }
+    let f = match factors.first() {
+        Some(&f) if factors.iter().all(|&g| (g - f).abs() <= 1e-12 * f) => f,
+        _ => return Cow::Borrowed(text),
+    };
+    if (f - 1.0).abs() <= 1e-12 {
+        return Cow::Borrowed(text);
+    }
+    let mut edits = Vec::new();
+    for e in instances(text, &["CONICAL_SURFACE"]) {
+        let a = top_level_args(&text[e.open..]);
+        if let Some(angle) = a.get(3) {
+            if let Ok(v) = angle.parse::<f64>() {
+                let at = offset(text, angle);
+                edits.push((at, at + angle.len(), format!("{:.17E}", v * f)));
+            }
+        }
+    }
+    apply(text, edits)
+}
+
+/// The largest entity id of the text.
+fn max_id(text: &str) -> u64 {
+    let b = text.as_bytes();
+    let mut best = 0;
+    let mut i = 0;
+    while let Some(k) = text[i..].find('#') {
+        let at = i + k + 1;
+        let end = at + b[at..].iter().take_while(|d| d.is_ascii_digit()).count();
+        if let Ok(n) = text[at..end].parse::<u64>() {
+            best = best.max(n);
+        }
+        i = end.max(at);
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pcurve_masters_are_rewritten() {
+        let t = "#47 = SURFACE_CURVE('',#48,(#52),.PCURVE_S1.);";
+        assert_eq!(
+            prefer_3d_curves(t),
+            "#47 = SURFACE_CURVE('',#48,(#52),.CURVE_3D.);"
+        );
+        assert!(matches!(prefer_3d_curves("#1 = LINE();"), Cow::Borrowed(_)));
+    }
+
+    #[test]
+    fn unset_names_of_geometry_become_empty_and_other_unset_attributes_stay() {
+        let t = "#1=AXIS2_PLACEMENT_3D($,#2,#3,$);\n#4=SI_UNIT($,.METRE.);\n\
+            #5=( BOUNDED_CURVE() REPRESENTATION_ITEM($) );\n#6=CIRCLE('c',#1,1.);\n";
+        let r = unnamed_labels(t);
+        assert!(r.contains("#1=AXIS2_PLACEMENT_3D('',#2,#3,$);"), "{r}");
+        assert!(r.contains("#4=SI_UNIT($,.METRE.);"), "{r}");
+        assert!(r.contains("REPRESENTATION_ITEM('')"), "{r}");
+        assert!(r.contains("#6=CIRCLE('c',#1,1.);"), "{r}");
+    }
+
+    #[test]
+    fn edges_and_swept_surfaces_on_trimmed_curves_refer_to_the_basis_with_the_sense_combined() {
+        let t = "DATA;\n#1=TRIMMED_CURVE($,#2,(#9),(#10),.T.,.CARTESIAN.);\n\
+            #3=TRIMMED_CURVE('',#1,(PARAMETER_VALUE(1.)),(PARAMETER_VALUE(0.)),\n.F.,.UNSPECIFIED.);\n\
+            #4=EDGE_CURVE('',#5,#6,#1,.T.);\n#7 = EDGE_CURVE('a;b',#5,#6, #3 ,.T.);\n\
+            #8=EDGE_CURVE('',#5,#6,#2,.F.);\n#11=SURFACE_OF_LINEAR_EXTRUSION('',#3,#12);\n\
+            #13=ADVANCED_FACE('',(#14),#11,.T.);\n#15=SURFACE_OF_REVOLUTION('',#1,#16);\n\
+            #17=ADVANCED_FACE('',(#14),#15,.F.);\nENDSEC;\n";
+        let r = untrim_curves(t);
+        assert!(r.contains("#4=EDGE_CURVE('',#5,#6,#2,.T.);"), "{r}");
+        assert!(r.contains("#7 = EDGE_CURVE('a;b',#5,#6, #2 ,.F.);"), "{r}");
+        assert!(r.contains("#8=EDGE_CURVE('',#5,#6,#2,.F.);"), "{r}");
+        assert!(
+            !r.contains("TRIMMED_CURVE"),
+            "unreferenced trimmed curves stay: {r}"
+        );
+        assert!(
+            r.contains("#11=SURFACE_OF_LINEAR_EXTRUSION('',#2,#12);"),
+            "{r}"
+        );
+        assert!(r.contains("#13=ADVANCED_FACE('',(#14),#11,.F.);"), "{r}");
+        assert!(r.contains("#15=SURFACE_OF_REVOLUTION('',#2,#16);"), "{r}");
+        assert!(r.contains("#17=ADVANCED_FACE('',(#14),#15,.F.);"), "{r}");
+        assert!(matches!(untrim_curves("#1=LINE();"), Cow::Borrowed(_)));
+    }
+
+    #[test]
+    fn cone_angles_in_degrees_become_radians() {
+        let t = "DATA;\n#1=CONICAL_SURFACE('',#2,1.5,3.E1);\n\
+            #5=(CONVERSION_BASED_UNIT('DEGREE',#6)NAMED_UNIT(*)PLANE_ANGLE_UNIT());\n\
+            #6=PLANE_ANGLE_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(1.745329251994E-2),\n#7);\n\
+            #7=(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.));\n\
+            #8=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n\
+            #9=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNIT_ASSIGNED_CONTEXT((#8,#5))\n\
+            REPRESENTATION_CONTEXT('ID1','3'));\nENDSEC;\n";
+        let r = radian_cone_angles(t);
+        let head = "#1=CONICAL_SURFACE('',#2,1.5,";
+        let k = r.find(head).unwrap() + head.len();
+        let v: f64 = r[k..].split(')').next().unwrap().parse().unwrap();
+        assert!((v - std::f64::consts::PI / 6.0).abs() < 1e-11, "{r}");
+        // radians already, or two contexts in different units: unchanged
+        assert!(matches!(
+            radian_cone_angles(&t.replace(
+                "GLOBAL_UNIT_ASSIGNED_CONTEXT((#8,#5))",
+                "GLOBAL_UNIT_ASSIGNED_CONTEXT((#8,#7))"
+            )),
+            Cow::Borrowed(_)
+        ));
+        let two = t.replace(
+            "ENDSEC;",
+            "#10=(GLOBAL_UNIT_ASSIGNED_CONTEXT((#7)));\nENDSEC;",
+        );
+        assert!(matches!(radian_cone_angles(&two), Cow::Borrowed(_)));
+    }
+
+    #[test]
+    fn placements_along_x_without_a_reference_direction_get_one() {
+        let t = "DATA;\n#1=DIRECTION('',(-1.,0.,0.));\n#2=DIRECTION('',(0.,0.,1.E0));\n\
+            #3=AXIS2_PLACEMENT_3D('c',#9,#1,$);\n#4=AXIS2_PLACEMENT_3D('d',#9,#2,$);\n\
+            #5=AXIS2_PLACEMENT_3D('e',#9,#1,#2);\n#12=CIRCLE('',#3,1.);\nENDSEC;\n";
+        let r = default_ref_directions(t);
+        assert!(r.contains("#3=AXIS2_PLACEMENT_3D('c',#9,#1,#13);"), "{r}");
+        assert!(r.contains("#4=AXIS2_PLACEMENT_3D('d',#9,#2,$);"), "{r}");
+        assert!(r.contains("#5=AXIS2_PLACEMENT_3D('e',#9,#1,#2);"), "{r}");
+        assert!(r.contains("#13=DIRECTION('',(0.,0.,1.));\nENDSEC;"), "{r}");
+        assert!(matches!(
+            default_ref_directions(&t.replace("(-1.,0.,0.)", "(0.,1.,0.)")),
+            Cow::Borrowed(_)
+        ));
+    }
+}
