@@ -18,8 +18,12 @@ use crate::{GeometryError, Vec3};
 use truck_geometry::prelude::{BSplineSurface, NurbsSurface, Point3, Vector4};
 
 /// Highest supported degree (fixed-size scratch arrays keep evaluation allocation-free).
-const MAX_DEGREE: usize = 11;
-const M: usize = MAX_DEGREE + 1;
+/// OpenVSP writes piecewise Bézier fuselage surfaces of degree 22.
+const MAX_DEGREE: usize = 31;
+/// Scratch size for degrees up to 11 (every common CAD surface; the small arrays keep the
+/// usual evaluation fast) and for the rest.
+const SMALL: usize = 12;
+const LARGE: usize = MAX_DEGREE + 1;
 
 /// A B-spline or NURBS surface with local evaluation; see the module doc.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,7 +40,7 @@ pub struct BSplineSurf {
 }
 
 impl BSplineSurf {
-    /// Highest supported degree in each direction (11).
+    /// Highest supported degree in each direction (31).
     pub const MAX_DEGREE: usize = MAX_DEGREE;
 
     /// Copies a truck B-spline surface (`control_points()[i_u][i_v]`).
@@ -145,7 +149,7 @@ impl BSplineSurf {
     /// Homogeneous sums S_kl = Σ N_i^(k) M_j^(l) P^w_ij for (k, l) ∈ {00, 10, 01, 20, 11, 02}.
     #[inline]
     #[allow(clippy::needless_range_loop)] // index arithmetic on spans reads best as loops
-    fn homogeneous(&self, u: f64, v: f64) -> [[f64; 4]; 6] {
+    fn homogeneous<const M: usize>(&self, u: f64, v: f64) -> [[f64; 4]; 6] {
         let (p, q) = (self.deg[0], self.deg[1]);
         let (ku, kv) = (self.span(0, u), self.span(1, v));
         let mut nu = [[0.0; M]; 3];
@@ -179,7 +183,7 @@ impl BSplineSurf {
 
 /// Non-zero B-spline basis functions N_{k−p..k, p}(u) (Piegl & Tiller A2.2).
 #[inline]
-fn basis(t: &[f64], k: usize, p: usize, u: f64, n: &mut [f64; M]) {
+fn basis<const M: usize>(t: &[f64], k: usize, p: usize, u: f64, n: &mut [f64; M]) {
     let mut left = [0.0; M];
     let mut right = [0.0; M];
     n[0] = 1.0;
@@ -199,7 +203,7 @@ fn basis(t: &[f64], k: usize, p: usize, u: f64, n: &mut [f64; M]) {
 /// Non-zero B-spline basis functions N_{k−p..k, p}(u) and their first two derivatives in
 /// `ders[0..3][0..=p]` (Piegl & Tiller A2.3; knot span k must be non-empty).
 #[inline]
-fn basis_ders(t: &[f64], k: usize, p: usize, u: f64, ders: &mut [[f64; M]; 3]) {
+fn basis_ders<const M: usize>(t: &[f64], k: usize, p: usize, u: f64, ders: &mut [[f64; M]; 3]) {
     let mut ndu = [[0.0; M]; M];
     let mut left = [0.0; M];
     let mut right = [0.0; M];
@@ -274,7 +278,11 @@ impl Surface for BSplineSurf {
     }
 
     fn eval(&self, u: f64, v: f64) -> SurfacePoint {
-        let s = self.homogeneous(u, v);
+        let s = if self.deg[0].max(self.deg[1]) < SMALL {
+            self.homogeneous::<SMALL>(u, v)
+        } else {
+            self.homogeneous::<LARGE>(u, v)
+        };
         let v3 = |c: &[f64; 4]| Vec3::new(c[0], c[1], c[2]);
         // Derivatives with respect to the normalized parameters already (normalized knots).
         let [a, au, av, auu, auv, avv] = s.map(|c| v3(&c));
@@ -303,6 +311,17 @@ impl Surface for BSplineSurf {
     }
 
     fn point(&self, u: f64, v: f64) -> Vec3 {
+        if self.deg[0].max(self.deg[1]) < SMALL {
+            self.point_with::<SMALL>(u, v)
+        } else {
+            self.point_with::<LARGE>(u, v)
+        }
+    }
+}
+
+impl BSplineSurf {
+    /// [`Surface::point`] with scratch arrays of size `M` (> both degrees).
+    fn point_with<const M: usize>(&self, u: f64, v: f64) -> Vec3 {
         let (p, q) = (self.deg[0], self.deg[1]);
         let (ku, kv) = (self.span(0, u), self.span(1, v));
         let mut nu = [0.0; M];
