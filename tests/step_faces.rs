@@ -437,3 +437,86 @@ fn entity_forms_of_other_cad_systems_give_the_same_face() {
     let d = distance(&read("a.x"), &read("b.x"));
     assert!(d < 1e-9, "CLI grids differ by {d:e}");
 }
+
+#[test]
+fn bare_surfaces_with_poles_are_gridded_and_degenerate_ones_refused() {
+    // data/step/bare_poles.step: (1) z = (x + y)² over the triangle x, y ≥ 0, x + y ≤ 1, its
+    // side v = 0 collapsed to the origin (area ∫₀¹ s √(1 + 8 s²) ds = 13/12); (2) a planar
+    // lens y = ±2 x (1 − x), both sides v = 0 and v = 1 collapsed (area 2/3); (3) a surface
+    // that is one point.
+    let path = file("bare_poles.step");
+    let faces = read_step_faces(&path).unwrap();
+    assert_eq!(faces.len(), 3);
+    match faces[2].route() {
+        ellipgrid::cad::Route::Refused(why) => assert!(why.contains("single point"), "{why}"),
+        r => panic!("the point surface is routed {r:?}"),
+    }
+    let exact = [13.0 / 12.0, 2.0 / 3.0];
+    let on: [fn([f64; 3]) -> f64; 2] = [
+        |p| (p[2] - (p[0] + p[1]).powi(2)).abs() + (-p[0]).max(-p[1]).max(0.0),
+        |p| p[2].abs() + (p[1].abs() - 2.0 * p[0] * (1.0 - p[0])).max(0.0),
+    ];
+    for k in 0..2 {
+        let s = faces[k].surface.as_ref().unwrap();
+        let mut errs = Vec::new();
+        for n in [9, 17, 33] {
+            let d = DistributionSpec::Uniform {};
+            let g = ellipgrid::cad::grid_patch(s, (n, n), &d, &d, &mut DirectLu::new(), "pole")
+                .unwrap_or_else(|e| panic!("face {}: {e}", k + 1))
+                .grid;
+            assert!(unfolded(&g), "face {} at {n}: folded", k + 1);
+            let off = (0..g.len()).map(|p| on[k](node(&g, p))).fold(0.0, f64::max);
+            assert!(off < 1e-12, "face {} at {n}: a node {off:e} off", k + 1);
+            // the pole side's nodes are one point
+            let row: Vec<[f64; 3]> = (0..n).map(|i| node(&g, i)).collect();
+            assert!(
+                row.iter().all(|p| *p == row[0]),
+                "face {}: pole {row:?}",
+                k + 1
+            );
+            errs.push((area(&g) - exact[k]).abs() / exact[k]);
+        }
+        let r: Vec<f64> = errs.windows(2).map(|w| w[0] / w[1]).collect();
+        assert!(
+            r.iter().all(|r| (3.3..5.0).contains(r)),
+            "face {}: area errors {errs:?}",
+            k + 1
+        );
+        // The quality report sees triangles at the pole: no zero Jacobian, no zero spacing.
+        let q = quality::quality_surface(
+            &ellipgrid::cad::grid_patch(
+                s,
+                (17, 17),
+                &DistributionSpec::Uniform {},
+                &DistributionSpec::Uniform {},
+                &mut DirectLu::new(),
+                "pole",
+            )
+            .unwrap()
+            .grid,
+        );
+        assert!(q.scaled_jacobian_min > 0.05, "{q:?}");
+        assert!(q.min_spacing > 0.0, "{q:?}");
+    }
+    // Through the CLI: the two faces written, the point refused, exit code 2.
+    let d = tempfile::tempdir().unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "step",
+            "grid",
+            path.to_str().unwrap(),
+            "--all",
+            "-o",
+            "poles.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("face 3: the surface is a single point"),
+        "{}",
+        text(&o)
+    );
+    let file = ellipgrid::io::plot3d::read_plot3d(&d.path().join("poles.x")).unwrap();
+    assert_eq!(file.blocks.len(), 2);
+}

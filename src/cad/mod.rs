@@ -34,8 +34,11 @@
 //!
 //! A file with no face in any shell (OpenVSP writes its components as bare B-spline surfaces
 //! in `GEOMETRIC_SET`s) gives its B-spline and NURBS surfaces instead, each the whole surface
-//! as an untrimmed four-sided patch; a surface with a collapsed side (a wing tip or a nose
-//! closed to a point) is refused by the patch route ("the edge has zero length").
+//! as an untrimmed four-sided patch. A side collapsed to a point (a pole: the nose of a
+//! fuselage, the leading and trailing edge points of a wing cap) stays one: the grid's cells
+//! there are triangles, its lines leave the pole along the parameter lines of the opposite
+//! side's nodes ([`grid_patch`]). A surface with no area (one point, or a curve: OpenVSP writes
+//! such degenerate patches at wing roots and tips) is refused.
 //!
 //! Faces without a boundary, whose one loop winds around the surface (a cap around a pole),
 //! or that cannot be split into blocks are refused with the reason.
@@ -355,9 +358,12 @@ fn bare_face(index: usize, surface: StepSurface) -> StepFace {
         StepSurface::NurbsSurface(s) => BSplineSurf::from_truck_nurbs(s),
         _ => unreachable!("bare surfaces are B-spline or NURBS surfaces"),
     };
-    let (surface_ok, surface_error) = match s {
+    let (surface_ok, surface_error) = match s.map_err(|e| e.to_string()).and_then(|s| {
+        patch::has_area(&s)?;
+        Ok(s)
+    }) {
         Ok(s) => (Some(s), None),
-        Err(e) => (None, Some(e.to_string())),
+        Err(e) => (None, Some(e)),
     };
     StepFace {
         index,

@@ -27,7 +27,7 @@
 //! Entry points: [`solve_harmonic`] (any conditions) and [`harmonic_st`] (the s and t problems
 //! of Section 2.4).
 
-use crate::grid::arclength::normalized_arclength;
+use crate::grid::arclength::edge_arclengths;
 use crate::grid::{Edge, Grid2};
 use crate::solve::direct::DirectLu;
 use crate::solve::stencil9::Stencil9;
@@ -152,7 +152,14 @@ fn flux_rows<const D: usize>(g: &Grid2<D>, place: &str) -> Result<Vec<[f64; 9]>>
                 (&el, &mxi, 0, 2, &AVG_XI),
                 (&er, &mxi, 1, 3, &AVG_XI),
             ];
-            for (xn, xt, from, to, avg_t) in faces {
+            // A half-face across a zero-length cell edge on a block side collapsed to a pole
+            // joins two Dirichlet nodes (the pole): its flux enters only rows that are
+            // discarded, and the cell is a triangle whose other half-faces are regular.
+            let on_side = [j == 0, j + 2 == nj, i == 0, i + 2 == ni];
+            for (k, (xn, xt, from, to, avg_t)) in faces.into_iter().enumerate() {
+                if on_side[k] && dot(xn, xn) == 0.0 {
+                    continue;
+                }
                 let (p, q) = face_coefs(xn, xt).ok_or_else(bad)?;
                 let mut f = [0.0; 4];
                 for (m, fm) in f.iter_mut().enumerate() {
@@ -358,7 +365,8 @@ fn assemble<const D: usize>(
 
 /// The s and t problems of Section 2.4 on grid `g` (METHOD.md §3): s = 0 on E1, 1 on E2, and
 /// on E3/E4 the normalized arclength [30]–[38], or zero Neumann flux where that edge is
-/// orthogonal; t = 0 on E3, 1 on E4, and on E1/E2 arclength or Neumann. `orthogonal` is
+/// orthogonal; t = 0 on E3, 1 on E4, and on E1/E2 arclength or Neumann. An edge collapsed to
+/// a point (a pole) takes the opposite edge's arclength ([`edge_arclengths`]). `orthogonal` is
 /// indexed E1, E2, E3, E4. With no orthogonal edge this is the harmonic map of Section 1 on a
 /// given grid (the Laplace–Beltrami step of the Section 4 pipeline).
 ///
@@ -371,11 +379,13 @@ pub fn harmonic_st<const D: usize>(
     place: &str,
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let (ni, nj) = (g.ni(), g.nj());
+    let edges = Edge::ALL.map(|e| g.edge(e));
+    let arclength = edge_arclengths(edges.each_ref().map(|e| &e[..]));
     let side = |e: Edge| {
         if orthogonal[e.index()] {
             EdgeCondition::Neumann
         } else {
-            EdgeCondition::Dirichlet(normalized_arclength(&g.edge(e)))
+            EdgeCondition::Dirichlet(arclength[e.index()].clone())
         }
     };
     let s_conds = [

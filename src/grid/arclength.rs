@@ -1,6 +1,6 @@
 //! Normalized arclength edge functions s_E3, s_E4, t_E1, t_E2, eqs. [30]–[38].
 
-use crate::grid::boundary::Boundary2;
+use crate::grid::boundary::{collapsed_edges, Boundary2};
 use crate::grid::Edge;
 
 /// Edge functions of the algebraic transformation: monotone maps from the computational
@@ -36,14 +36,34 @@ pub fn normalized_arclength<const D: usize>(pts: &[[f64; D]]) -> Vec<f64> {
     s
 }
 
+/// The normalized arclength of each edge E1..E4, eqs. [30]–[38]; an edge collapsed to a point
+/// (a pole) takes that of the opposite edge, or the uniform distribution if both are poles:
+/// the grid lines then fan into the pole as they leave the opposite edge.
+pub fn edge_arclengths<const D: usize>(edges: [&[[f64; D]]; 4]) -> [Vec<f64>; 4] {
+    let poles = collapsed_edges(edges);
+    std::array::from_fn(|k| {
+        let opposite = k ^ 1; // E1 ↔ E2, E3 ↔ E4
+        if !poles[k] {
+            normalized_arclength(edges[k])
+        } else if !poles[opposite] {
+            normalized_arclength(edges[opposite])
+        } else {
+            let n = edges[k].len();
+            (0..n).map(|i| i as f64 / (n - 1) as f64).collect()
+        }
+    })
+}
+
 impl EdgeFunctions {
-    /// The arclength edge functions of a boundary, eqs. [30]–[38].
+    /// The arclength edge functions of a boundary, eqs. [30]–[38] (a pole takes the opposite
+    /// edge's, [`edge_arclengths`]).
     pub fn arclength<const D: usize>(b: &Boundary2<D>) -> Self {
+        let [t_e1, t_e2, s_e3, s_e4] = edge_arclengths(Edge::ALL.map(|e| b.edge(e)));
         EdgeFunctions {
-            s_e3: normalized_arclength(b.edge(Edge::E3)),
-            s_e4: normalized_arclength(b.edge(Edge::E4)),
-            t_e1: normalized_arclength(b.edge(Edge::E1)),
-            t_e2: normalized_arclength(b.edge(Edge::E2)),
+            s_e3,
+            s_e4,
+            t_e1,
+            t_e2,
         }
     }
 

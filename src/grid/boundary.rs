@@ -18,6 +18,35 @@ pub struct Boundary2<const D: usize> {
     edges: [Vec<[f64; D]>; 4],
 }
 
+/// Relative length (of the boundary's diameter) at or below which a block side counts as
+/// collapsed to a point: a pole ([`Boundary2::with_poles`]).
+pub const POLE_TOLERANCE: f64 = 1e-12;
+
+/// Which of the edges E1..E4 are collapsed to a point (length ≤ [`POLE_TOLERANCE`] of the
+/// diameter of all four).
+pub fn collapsed_edges<const D: usize>(edges: [&[[f64; D]]; 4]) -> [bool; 4] {
+    let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
+    for p in edges.iter().flat_map(|e| e.iter()) {
+        for c in 0..D {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    let diam = (0..D).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+    edges.map(|pts| {
+        let len: f64 = pts
+            .windows(2)
+            .map(|w| {
+                (0..D)
+                    .map(|c| (w[1][c] - w[0][c]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .sum();
+        diam > 0.0 && len <= POLE_TOLERANCE * diam
+    })
+}
+
 fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
     a.iter()
         .zip(b)
@@ -29,7 +58,19 @@ fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
 impl<const D: usize> Boundary2<D> {
     /// Validates four edges (E1, E2, E3, E4) and joins their corners exactly (the corner
     /// values of E3 and E4 are kept). `place` names the block in error messages.
-    pub fn new(mut edges: [Vec<[f64; D]>; 4], place: &str) -> Result<Self> {
+    pub fn new(edges: [Vec<[f64; D]>; 4], place: &str) -> Result<Self> {
+        Self::build(edges, place, false)
+    }
+
+    /// As [`Boundary2::new`], but a side may be collapsed to a point, a *pole* (the nose of a
+    /// fuselage, the three-sided B-spline patches CAD systems write): its length at most
+    /// [`POLE_TOLERANCE`] of the diameter; all its points are then made that point exactly.
+    /// Two adjacent sides may not both be poles (the block would have only two sides).
+    pub fn with_poles(edges: [Vec<[f64; D]>; 4], place: &str) -> Result<Self> {
+        Self::build(edges, place, true)
+    }
+
+    fn build(mut edges: [Vec<[f64; D]>; 4], place: &str, poles: bool) -> Result<Self> {
         for e in Edge::ALL {
             let pts = &edges[e.index()];
             let at = |m: String| Error::input(format!("{place}, edge {e}"), m);
@@ -93,7 +134,35 @@ impl<const D: usize> Boundary2<D> {
         edges[1][0] = edges[2][n];
         edges[0][m] = edges[3][0];
         edges[1][m] = edges[3][n];
+        let collapsed = if poles {
+            collapsed_edges([&edges[0][..], &edges[1], &edges[2], &edges[3]])
+        } else {
+            [false; 4]
+        };
+        if (collapsed[0] || collapsed[1]) && (collapsed[2] || collapsed[3]) {
+            return Err(Error::input(
+                place,
+                "two adjacent edges are collapsed to points: the block has only two sides",
+            ));
+        }
         for e in Edge::ALL {
+            if !collapsed[e.index()] {
+                continue;
+            }
+            // The pole: the corner value of the adjacent E3/E4 (or E1/E2) edges, exactly.
+            let p = edges[e.index()][0];
+            edges[e.index()].iter_mut().for_each(|q| *q = p);
+            match e {
+                Edge::E1 => (edges[2][0], edges[3][0]) = (p, p),
+                Edge::E2 => (edges[2][n], edges[3][n]) = (p, p),
+                Edge::E3 => (edges[0][0], edges[1][0]) = (p, p),
+                Edge::E4 => (edges[0][m], edges[1][m]) = (p, p),
+            }
+        }
+        for e in Edge::ALL {
+            if collapsed[e.index()] {
+                continue;
+            }
             let pts = &edges[e.index()];
             let len: f64 = pts.windows(2).map(|w| dist(&w[0], &w[1])).sum();
             if len <= 1e-12 * diam {

@@ -1,7 +1,8 @@
 //! Geometric kernels shared by planar and surface grids: node access in R³, cell normals,
 //! corner Jacobians and angles, the neighbour-flip test, NaN-propagating min/max.
 
-use crate::Grid2;
+use crate::grid::boundary::collapsed_edges;
+use crate::{Edge, Grid2};
 
 /// A point or vector in R³ (planar grids use z = 0).
 pub(super) type V3 = [f64; 3];
@@ -80,12 +81,20 @@ pub(super) struct Nodes<'a> {
     pub nj: usize,
     /// True for a surface grid (D = 3): cell normals from the diagonals, neighbour-flip test.
     pub surface: bool,
+    /// Block sides E1..E4 collapsed to a point (poles, [`collapsed_edges`]).
+    pub poles: [bool; 4],
 }
 
 impl<'a> Nodes<'a> {
     /// View of a planar (D = 2) or surface (D = 3) grid.
     pub fn new<const D: usize>(g: &'a Grid2<D>) -> Self {
         debug_assert!(D == 2 || D == 3);
+        let poles = if g.ni() >= 2 && g.nj() >= 2 {
+            let edges = Edge::ALL.map(|e| g.edge(e));
+            collapsed_edges(edges.each_ref().map(|e| &e[..]))
+        } else {
+            [false; 4]
+        };
         Nodes {
             x: g.coord(0),
             y: g.coord(1),
@@ -93,6 +102,25 @@ impl<'a> Nodes<'a> {
             ni: g.ni(),
             nj: g.nj(),
             surface: D >= 3,
+            poles,
+        }
+    }
+
+    /// The edge of cell (i, j) on a pole side ([`eval_cell`]'s `pole`), if any.
+    #[inline]
+    pub fn pole_edge(&self, i: usize, j: usize) -> Option<usize> {
+        // Cell edges: 0 bottom (E3 side), 1 right (E2), 2 top (E4), 3 left (E1).
+        let [e1, e2, e3, e4] = self.poles;
+        if e3 && j == 0 {
+            Some(0)
+        } else if e4 && j + 2 == self.nj {
+            Some(2)
+        } else if e1 && i == 0 {
+            Some(3)
+        } else if e2 && i + 2 == self.ni {
+            Some(1)
+        } else {
+            None
         }
     }
 
@@ -204,24 +232,33 @@ pub(super) struct CellEval {
 /// CAD face gridded as one block).
 pub(super) const FLAT: f64 = 1e-10;
 
-/// Evaluates a cell with reference normal `n` and orientation sign `s`.
+/// Evaluates a cell with reference normal `n` and orientation sign `s`; `pole` is the cell
+/// edge (k: from c[k] to c[k+1]) that lies on a block side collapsed to a point, if any: if
+/// it has zero length the cell is evaluated as the triangle it is (three corners, three sides).
 ///
 /// The corner angle is measured in the plane normal to `n`, signed by the corner Jacobian and
 /// taken in [0°, 360°): a reflex (non-convex or folded) corner has θ > 180°, so the skewness of
 /// such a cell exceeds 1. A zero-length edge gives θ = 0° (skewness 1).
 #[inline]
-pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64) -> CellEval {
+pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64, pole: Option<usize>) -> CellEval {
     let e: [V3; 4] = std::array::from_fn(|k| sub(c[(k + 1) % 4], c[k]));
     let l: [f64; 4] = std::array::from_fn(|k| norm(e[k]));
     let (mut jmin, mut jmax, mut smin) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
     let (mut tmin, mut tmax) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut folded = false;
+    // A cell edge of zero length on a block side collapsed to a pole: the cell is a
+    // triangle; its two corners at the pole are one corner, between the edges to c[q+2]
+    // and c[q+3].
+    let pole = pole.filter(|&q| l[q] == 0.0);
     for k in 0..4 {
-        let a = e[k];
-        let p = e[(k + 3) % 4];
+        let (a, p) = match pole {
+            Some(q) if k == (q + 1) % 4 => continue,
+            Some(q) if k == q => (e[(q + 1) % 4], e[(q + 3) % 4]),
+            _ => (e[k], e[(k + 3) % 4]),
+        };
         let b = [-p[0], -p[1], -p[2]];
         let jac = s * dot(cross(a, b), n);
-        let ll = l[k] * l[(k + 3) % 4];
+        let ll = norm(a) * norm(b);
         let scaled = if ll == 0.0 {
             0.0
         } else {
@@ -243,8 +280,9 @@ pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64) -> CellEval {
         tmax = nmax(tmax, theta);
     }
     let skew = nmax((tmax - 90.0) / 90.0, (90.0 - tmin) / 90.0);
-    let lmax = l.iter().fold(0.0, |m: f64, &v| nmax(m, v));
-    let lmin = l.iter().fold(f64::INFINITY, |m: f64, &v| nmin(m, v));
+    let sides = l.iter().enumerate().filter(|&(k, _)| Some(k) != pole);
+    let lmax = sides.clone().fold(0.0, |m: f64, (_, &v)| nmax(m, v));
+    let lmin = sides.fold(f64::INFINITY, |m: f64, (_, &v)| nmin(m, v));
     let aspect = if lmin > 0.0 {
         lmax / lmin
     } else if lmin == 0.0 {

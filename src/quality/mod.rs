@@ -29,7 +29,13 @@
 //! over as a whole). That second test assumes neighbouring cells turn by less than 90°.
 //!
 //! # Degenerate input
-//! Nothing here panics. A zero-length edge makes the adjacent corner Jacobians 0 (folded),
+//! A block side collapsed to a point (a *pole*: all its nodes within 1e-12 of the diameter of
+//! the boundary, [`crate::grid::boundary::collapsed_edges`]) is not degenerate: the cells along
+//! it are triangles, evaluated as such (their two corners at the pole are one corner, between
+//! the edges leaving it; aspect ratio over the three sides); the zero spacings along a pole and
+//! its orthogonality (it has no tangent) are not reported.
+//!
+//! Nothing here panics. Elsewhere a zero-length edge makes the adjacent corner Jacobians 0 (folded),
 //! the scaled Jacobian 0, the corner angle 0° (skewness ≥ 1) and the aspect ratio ∞; a growth
 //! ratio with one zero spacing is ∞ (0/0 counts as 1). Grids smaller than 2 × 2 give a report
 //! with `cells = 0`, NaN metrics and no folds. Otherwise NaN appears only for the orthogonality of
@@ -233,7 +239,7 @@ fn row(nd: &Nodes, j: usize, s: f64) -> CellStats<2> {
     for i in 0..nd.ni - 1 {
         let c = nd.cell(i, j);
         let n = nd.normal(&c);
-        let e = eval_cell(&c, n, s);
+        let e = eval_cell(&c, n, s, nd.pole_edge(i, j));
         a.add(e.jmin, e.jmax, e.smin, e.skew, e.aspect);
         let corner_ok = !e.folded;
         if !corner_ok || (nd.surface && nd.flipped(i, j, n)) {
@@ -255,7 +261,12 @@ fn edge_orthogonality(nd: &Nodes, e: Edge) -> EdgeOrthogonality {
             Edge::E4 => ([k, nj - 1], [k, nj - 2]),
         }
     };
-    let len = if e.runs_along_i() { ni } else { nj };
+    // A side collapsed to a pole has no tangent: no orthogonality (no nodes).
+    let len = match (nd.poles[e.index()], e.runs_along_i()) {
+        (true, _) => 0,
+        (false, true) => ni,
+        (false, false) => nj,
+    };
     let (mut max, mut sum, mut nodes) = (f64::NEG_INFINITY, 0.0, 0usize);
     for k in 1..len.saturating_sub(1) {
         let (w, q) = at(k);
@@ -325,9 +336,15 @@ fn report(nd: &Nodes) -> QualityReport {
         a
     });
     let point = |[i, j]: [usize; 2]| nd.p(i, j);
+    // Spacings along a side collapsed to a pole are zero by construction: not counted.
+    let [e1, e2, e3, e4] = nd.poles;
     let (gi, gj) = (
-        lines([nd.ni, nd.nj], 0, point),
-        lines([nd.ni, nd.nj], 1, point),
+        lines([nd.ni, nd.nj], 0, point, |[_, j]| {
+            (e3 && j == 0) || (e4 && j + 1 == nd.nj)
+        }),
+        lines([nd.ni, nd.nj], 1, point, |[i, _]| {
+            (e1 && i == 0) || (e2 && i + 1 == nd.ni)
+        }),
     );
     QualityReport {
         ni: nd.ni,
@@ -368,7 +385,7 @@ fn cell_fields(nd: &Nodes) -> Vec<(&'static str, Vec<f64>)> {
             .for_each(|(j, (((jr, sr), kr), ar))| {
                 for i in 0..nci {
                     let c = nd.cell(i, j);
-                    let e = eval_cell(&c, nd.normal(&c), s);
+                    let e = eval_cell(&c, nd.normal(&c), s, nd.pole_edge(i, j));
                     jr[i] = e.jmin;
                     sr[i] = e.smin;
                     kr[i] = e.skew;

@@ -86,11 +86,13 @@ impl<const N: usize> CellStats<N> {
 
 /// Spacings along the grid lines of axis `a` of a grid of `dims` nodes whose node n is
 /// `point(n)`: (largest growth ratio of adjacent spacings, inverted to be ≥ 1 (1 without two
-/// adjacent spacings); shortest spacing; longest spacing).
+/// adjacent spacings); shortest spacing; longest spacing). Segments from a node where
+/// `on_pole` holds (a side collapsed to a point) are left out.
 pub(super) fn lines<const N: usize>(
     dims: [usize; N],
     a: usize,
     point: impl Fn([usize; N]) -> V3 + Sync,
+    on_pole: impl Fn([usize; N]) -> bool + Sync,
 ) -> (f64, f64, f64) {
     // The spacing from node n to the next along a.
     let h = |n: [usize; N]| {
@@ -107,7 +109,7 @@ pub(super) fn lines<const N: usize>(
                 v
             })
         })
-        .filter(|n| n[a] + 1 < dims[a])
+        .filter(|n| n[a] + 1 < dims[a] && !on_pole(*n))
         .map(|n| {
             let hn = h(n);
             let gr = if n[a] + 2 < dims[a] {

@@ -428,20 +428,25 @@ fn degenerate_input_does_not_panic() {
     assert_eq!(r.orthogonality[0].nodes, 0);
     let s = quality_surface(&Grid2::zeros(3, 3));
     assert_eq!(s.folded_cells, 4);
-    // A collapsed edge (pole): the cells along it are degenerate, the others fine.
+    // A block side collapsed to a point (a pole): the cells along it are triangles, valid
+    // here; its zero spacings are not counted. Collapsed only in part: those cells fold.
     let mut g = cartesian(4, 4, 1.0, 1.0);
     for i in 0..4 {
         g.set(i, 0, [1.5, 0.0]);
     }
     let r = quality2d(&g);
-    assert_eq!(r.first_folded, vec![[0, 0], [1, 0], [2, 0]]);
-    assert_eq!(r.min_spacing, 0.0);
-    assert_eq!(
-        r.growth_i_max, 1.0,
-        "0/0 spacings along the collapsed edge count as 1"
-    );
+    assert_eq!(r.first_folded, Vec::<[usize; 2]>::new());
+    assert_eq!(r.min_spacing, 1.0);
+    assert_eq!(r.growth_i_max, 1.0);
     near(r.growth_j_max, 3.25f64.sqrt(), TOL);
     assert!(r.skewness_max.is_finite());
+    assert!(r.scaled_jacobian_min > 0.3, "{r}");
+    assert_eq!(r.orthogonality[2].nodes, 0, "a pole has no tangent");
+    g.set(3, 0, [3.0, 0.0]);
+    let r = quality2d(&g);
+    assert_eq!(r.first_folded, vec![[0, 0], [1, 0]]);
+    assert_eq!(r.min_spacing, 0.0);
+    assert_eq!(r.growth_i_max, f64::INFINITY, "a zero spacing next to 1.5");
     // A duplicated node inside a line: growth ∞.
     let mut g = cartesian(3, 2, 1.0, 1.0);
     g.set(1, 0, [0.0, 0.0]);
@@ -534,9 +539,23 @@ fn a_flat_corner_is_degenerate_not_folded_but_a_collapsed_one_folds() {
         [[0.0, 0.0], [1.0, 0.0], [0.5, 0.0], [1.0, 1.0]][i + 2 * j]
     });
     assert_eq!(quality2d(&collapsed).folded_cells, 1);
-    // A zero-length edge still folds.
-    let short = Grid2::<2>::from_fn(2, 2, |i, j| {
-        [[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [1.0, 1.0]][i + 2 * j]
+    // A zero-length edge folds, unless it is a whole block side collapsed to a pole (then
+    // the cell is the triangle it is).
+    let short = Grid2::<2>::from_fn(3, 2, |i, j| {
+        [
+            [0.0, 0.0],
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [0.0, 1.0],
+            [0.5, 1.0],
+            [1.0, 1.0],
+        ][i + 3 * j]
     });
-    assert_eq!(quality2d(&short).folded_cells, 1);
+    assert_eq!(quality2d(&short).first_folded, vec![[0, 0]]);
+    let pole = Grid2::<2>::from_fn(2, 2, |i, j| {
+        [[0.0, 0.0], [0.0, 0.0], [1.0, 1.0], [0.0, 1.0]][i + 2 * j]
+    });
+    let q = quality2d(&pole);
+    assert_eq!(q.folded_cells, 0, "{q}");
+    near(q.scaled_jacobian_min, 0.5f64.sqrt(), 1e-12);
 }

@@ -168,7 +168,8 @@ pub fn grid_surface_orthogonal(
     let mut initial = Grid2::<3>::zeros(ni, nj);
     evaluate_into(surface, &puv.s, &puv.t, &mut initial);
     let edges = Edge::ALL.map(|e| initial.edge(e));
-    let boundary = Boundary2::new(edges, place)?;
+    // A side may be a pole (collapsed to a point): its nodes differ only in (u, v).
+    let boundary = Boundary2::with_poles(edges, place)?;
     boundary.apply_to(&mut initial);
     times.initial_grid = t0.elapsed().as_secs_f64();
     // Step 3: Laplace–Beltrami for s and t on x^I: Dirichlet = boundary arclength, or zero

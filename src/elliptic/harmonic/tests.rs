@@ -1,4 +1,5 @@
 use crate::elliptic::harmonic::*;
+use crate::grid::arclength::normalized_arclength;
 use crate::solve::direct::DirectLu;
 use std::f64::consts::PI;
 

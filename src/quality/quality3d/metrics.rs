@@ -312,7 +312,7 @@ pub fn quality3d(g: &Grid3) -> QualityReport3 {
         .into_iter()
         .fold(Acc::new(), Acc::merge);
     let point = |[i, j, k]: [usize; 3]| g.point(i, j, k);
-    let [gi, gj, gk] = [0, 1, 2].map(|a| lines([ni, nj, nk], a, point));
+    let [gi, gj, gk] = [0, 1, 2].map(|a| lines([ni, nj, nk], a, point, |_| false));
     let c = acc.cells;
     rep.jacobian_min = c.jmin;
     rep.jacobian_max = c.jmax;
