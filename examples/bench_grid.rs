@@ -139,11 +139,11 @@ fn whole(
 ) -> (Grid2<2>, NestedInfo) {
     let params = PicardParams {
         nested: Some(nested),
-        nonlinear: if what == "newton" {
+        nonlinear: Some(if what == "newton" {
             Nonlinear::Newton
         } else {
             Nonlinear::Picard
-        },
+        }),
         ..PicardParams::default()
     };
     let (r, info) =

@@ -78,8 +78,8 @@ fn run_variants(
         let mut case = LoadedCase::parse(&text, &path).expect("parse case");
         let p = &mut case.case.solver.picard;
         match v.as_str() {
-            "picard" => p.nonlinear = Nonlinear::Picard,
-            "newton" => p.nonlinear = Nonlinear::Newton,
+            "picard" => p.nonlinear = Some(Nonlinear::Picard),
+            "newton" => p.nonlinear = Some(Nonlinear::Newton),
             a => {
                 p.anderson = a
                     .strip_prefix("anderson")

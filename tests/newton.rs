@@ -19,7 +19,7 @@ fn case(file: &str, edit: fn(&str) -> String, nl: Nonlinear, tol: f64) -> Loaded
     let path = root().join("examples").join(file);
     let text = edit(&fs::read_to_string(&path).unwrap());
     let mut case = LoadedCase::parse(&text, Path::new(&path)).unwrap();
-    case.case.solver.picard.nonlinear = nl;
+    case.case.solver.picard.nonlinear = Some(nl);
     case.case.solver.picard.tolerance = tol;
     case
 }

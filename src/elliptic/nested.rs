@@ -80,7 +80,7 @@ pub const COARSE_STOP_NEWTON: f64 = 3e-2;
 /// The relative stop of a level whose stop is `stop` ([`COARSE_STOP`] on a coarse level, 0
 /// on the finest) for the nonlinear iteration of `params`.
 fn level_stop(params: &PicardParams, stop: f64) -> f64 {
-    if stop > 0.0 && params.nonlinear == Nonlinear::Newton {
+    if stop > 0.0 && params.iteration() == Nonlinear::Newton {
         COARSE_STOP_NEWTON
     } else {
         stop
