@@ -273,13 +273,15 @@ fn iterations(g: &job::Generated) -> Vec<(Nonlinear, usize, usize)> {
 #[test]
 fn the_default_is_newton_and_anderson_alone_selects_picard() {
     // the resolution of the setting, in its one place
+    // (Newton on planar grids, 2 coordinates; Picard on minimal surfaces, 3)
     let d = PicardParams::default();
-    assert_eq!((d.nonlinear, d.iteration()), (None, Nonlinear::Newton));
+    assert_eq!((d.nonlinear, d.iteration(2)), (None, Nonlinear::Newton));
+    assert_eq!(d.iteration(3), Nonlinear::Picard);
     let aa = PicardParams {
         anderson: 3,
         ..PicardParams::default()
     };
-    assert_eq!(aa.iteration(), Nonlinear::Picard);
+    assert_eq!(aa.iteration(2), Nonlinear::Picard);
     assert!(aa.check().is_ok());
     let explicit = PicardParams {
         nonlinear: Some(Nonlinear::Newton),
@@ -327,6 +329,29 @@ fn the_default_is_newton_and_anderson_alone_selects_picard() {
         format!("{:?}", both.blocks)
     );
     assert!(difference(&anderson, &picard) <= 2e-10);
+}
+
+#[test]
+fn minimal_surfaces_default_to_picard_and_take_newton_when_asked() {
+    // Scherk's surface as shipped (a minimal-surface block, 49²): Picard steps unless
+    // `nonlinear = "newton"` (measured: Newton costs 1.5–1.8× Picard's work units there)
+    let path = root().join("examples/scherk.toml");
+    let text = fs::read_to_string(&path).unwrap();
+    let load = |solver: &str| {
+        let t = text.replace("[solver]", &format!("[solver]\n{solver}"));
+        let case = LoadedCase::parse(&t, &path).unwrap();
+        job::generate(&case, |_| {}).unwrap()
+    };
+    let (default, newton) = (load(""), load("nonlinear = \"newton\""));
+    let (id, in_) = (iterations(&default), iterations(&newton));
+    println!("Scherk: default {id:?}, newton {in_:?}");
+    assert!(id.iter().all(|&(n, _, _)| n == Nonlinear::Picard));
+    assert!(in_.iter().all(|&(n, _, _)| n == Nonlinear::Newton));
+    assert!(steps(&newton) < steps(&default), "{in_:?} against {id:?}");
+    assert_eq!(
+        format!("{:?}", default.blocks),
+        format!("{:?}", load("nonlinear = \"picard\"").blocks)
+    );
 }
 
 /// The first block's Picard report of a JSON report file: (nonlinear, anderson, steps).

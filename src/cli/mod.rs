@@ -74,8 +74,9 @@ enum Command {
         /// Picard tolerance (max node update / block diameter).
         #[arg(long, default_value_t = 1e-10)]
         tolerance: f64,
-        /// Nonlinear iteration of 2D blocks: "newton" (Newton–Krylov, the default) or "picard"
-        /// (README "Nonlinear solve"); volume blocks always take Picard steps.
+        /// Nonlinear iteration: "newton" (Newton–Krylov, the default of planar blocks) or
+        /// "picard" (the default of minimal surfaces; README "Nonlinear solve"); volume blocks
+        /// always take Picard steps.
         #[arg(long, value_parser = ["picard", "newton"])]
         nonlinear: Option<String>,
         /// Make the grid orthogonal at these edges (Section 2.4), e.g. `--orthogonal E1,E3`.

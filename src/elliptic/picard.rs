@@ -44,9 +44,10 @@ pub struct PicardParams {
     /// contraction estimate, and the mixing costs ~6 % of a step).
     pub anderson: usize,
     /// The nonlinear iteration asked for: Picard steps [43, 44] or Newton–Krylov steps
-    /// ([`crate::elliptic::newton`]; 2D blocks, minimal surfaces and periodic blocks). `None`
-    /// (default): Newton, or Picard if `anderson` > 0; resolved by [`PicardParams::iteration`].
-    /// Volume blocks always take Picard steps.
+    /// ([`crate::elliptic::newton`]; planar, periodic and minimal-surface blocks). `None`
+    /// (default): Newton on planar and periodic blocks, Picard on minimal surfaces or if
+    /// `anderson` > 0; resolved by [`PicardParams::iteration`]. Volume blocks always take
+    /// Picard steps.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub nonlinear: Option<Nonlinear>,
 }
@@ -60,7 +61,7 @@ pub enum Nonlinear {
     #[default]
     Picard,
     /// Newton's method on [24], GMRES preconditioned by the Picard operator's solver
-    /// ([`crate::elliptic::newton`]): the default of 2D and periodic blocks.
+    /// ([`crate::elliptic::newton`]): the default of planar and periodic blocks.
     Newton,
 }
 
@@ -140,16 +141,18 @@ impl PicardParams {
         Ok(())
     }
 
-    /// The nonlinear iteration of 2D blocks (planar, minimal-surface and periodic ones): the
-    /// one set in `nonlinear`, else Picard steps if Anderson acceleration is asked for
-    /// (`anderson` > 0), else Newton–Krylov steps. Measured side by side on the paper's
-    /// multi-block cases and the 1025² single blocks (`examples/bench_multiblock.rs`,
-    /// `examples/bench_grid.rs --newton`; README "Nonlinear solve"), Newton's steps win or tie
-    /// on every case. The one place the default is resolved; volume blocks ignore it.
-    pub fn iteration(&self) -> Nonlinear {
+    /// The nonlinear iteration of a 2D block whose grid has `coordinates` coordinates (2:
+    /// planar, also periodic; 3: a minimal surface): the one set in `nonlinear`, else Picard
+    /// steps if Anderson acceleration is asked for (`anderson` > 0) or on a minimal surface,
+    /// else Newton–Krylov steps. The one place the default is resolved; volume blocks
+    /// ignore it (always Picard). Measured side by side (README "Nonlinear solve";
+    /// `examples/bench_multiblock.rs`, `examples/bench_grid.rs --newton`): on planar blocks
+    /// Newton wins or ties on every bench case but the NLR 7301 flap (~10 % slower), on the
+    /// Scherk minimal surface it costs 1.5–1.8× Picard's work units at 129² to 513².
+    pub fn iteration(&self, coordinates: usize) -> Nonlinear {
         match self.nonlinear {
             Some(n) => n,
-            None if self.anderson > 0 => Nonlinear::Picard,
+            None if self.anderson > 0 || coordinates != 2 => Nonlinear::Picard,
             None => Nonlinear::Newton,
         }
     }
