@@ -10,13 +10,17 @@
 //! `examples/boundary_layer.toml` with wall spacing 1e-5 (`bl-1e-5`; and `bl-ar1e4`, with
 //! wall-tangential spacings of 0.15 at both ends: aspect ratios ≥ 1e4), at 257², 513², 1025²
 //! nodes (`--quick`: 129², 257²), and the wavy C-block of `examples/folding_start.toml`
-//! (`folded`: deep concave valleys, the transfinite start folds) at the same sizes. For each:
+//! (`folded`: deep concave valleys, the transfinite start folds) and the unit square with a
+//! deep mushroom-shaped dent of `examples/dented_square.toml` (`dented`: its start folds
+//! too) at the same sizes. For each:
 //! - `linear`: the Picard system at the final grid (both coordinates' right-hand sides, x
 //!   from zero): cycles of the default multigrid (F(1,1)) to reduce the residual by 1e-10,
 //!   mean factor per cycle, setup (first setup, allocation included) and solve seconds, ns
 //!   per unknown per cycle;
 //! - `mg+nested`: the whole generation (tolerance 1e-10) by nested iteration with multigrid:
 //!   Picard steps per level (coarsest first), seconds, work units (`ellipgrid::elliptic::nested`);
+//! - `mg+nested` and `newton` ask for their iteration explicitly (`nonlinear = "picard"`,
+//!   `"newton"`; Newton is the default of 2D blocks);
 //! - `newton` (with `--newton`): the same by Newton–Krylov steps
 //!   ([`ellipgrid::elliptic::newton`]) instead of Picard steps, and the largest difference
 //!   from the `mg+nested` grid relative to the diameter;
@@ -139,11 +143,11 @@ fn whole(
 ) -> (Grid2<2>, NestedInfo) {
     let params = PicardParams {
         nested: Some(nested),
-        nonlinear: if what == "newton" {
+        nonlinear: Some(if what == "newton" {
             Nonlinear::Newton
         } else {
             Nonlinear::Picard
-        },
+        }),
         ..PicardParams::default()
     };
     let (r, info) =
@@ -204,7 +208,7 @@ fn main() {
     type Case = (&'static str, &'static str, fn(String) -> String);
     let newton = std::env::args().any(|a| a == "--newton");
     let lin = !std::env::args().any(|a| a == "--no-linear");
-    let cases: [Case; 4] = [
+    let cases: [Case; 5] = [
         ("curved", "curved.toml", |s| s),
         ("bl-1e-5", "boundary_layer.toml", |s| {
             s.replace("first = 1e-4", "first = 1e-5")
@@ -216,6 +220,7 @@ fn main() {
                 .replace("first = 0.01, last = 0.02", "first = 0.15, last = 0.15")
         }),
         ("folded", "folding_start.toml", |s| s),
+        ("dented", "dented_square.toml", |s| s),
     ];
     for (label, file, edit) in cases {
         if only.as_deref().is_some_and(|o| o != label) {

@@ -12,8 +12,9 @@
 //! periodic cut, 257 × 49; not with `andersonN`, whose steps fold it). `--quick` drops
 //! the refined cases.
 //! Each case runs `--repeat` times (default 3); the best wall-clock time is printed for each
-//! solver variant side by side: `picard` (plain Picard steps, the default), `newton`
-//! (`nonlinear = "newton"`), `andersonN` (Anderson acceleration of depth N); default
+//! solver variant side by side: `picard` (plain Picard steps, `nonlinear = "picard"`),
+//! `newton` (`nonlinear = "newton"`, the default of 2D blocks), `andersonN` (Anderson
+//! acceleration of depth N: Picard steps unless the case asks for Newton); default
 //! `picard,newton`. `--history` prints every step of every block.
 
 use ellipgrid::case::LoadedCase;
@@ -78,8 +79,8 @@ fn run_variants(
         let mut case = LoadedCase::parse(&text, &path).expect("parse case");
         let p = &mut case.case.solver.picard;
         match v.as_str() {
-            "picard" => p.nonlinear = Nonlinear::Picard,
-            "newton" => p.nonlinear = Nonlinear::Newton,
+            "picard" => p.nonlinear = Some(Nonlinear::Picard),
+            "newton" => p.nonlinear = Some(Nonlinear::Newton),
             a => {
                 p.anderson = a
                     .strip_prefix("anderson")

@@ -6,7 +6,7 @@ use ellipgrid::algebraic::ControlKind;
 use ellipgrid::case::{LoadedCase, SolverSpec};
 use ellipgrid::elliptic::domain::grid_block;
 use ellipgrid::elliptic::nested::{grid_block_nested, level_sizes};
-use ellipgrid::elliptic::picard::PicardParams;
+use ellipgrid::elliptic::picard::{Nonlinear, PicardParams};
 use ellipgrid::grid::boundary::Boundary2;
 use ellipgrid::solve::multigrid::MgParams;
 use ellipgrid::solve::multigrid::MultigridSafe;
@@ -40,10 +40,13 @@ fn boundary_layer(n: usize, m: usize) -> Boundary2<2> {
     })
 }
 
+/// Picard steps (set explicitly: these tests are about the Picard iteration, whose steps
+/// they count; Newton–Krylov, the default of 2D blocks, is `tests/newton.rs`'s).
 fn params(nested: bool) -> PicardParams {
     PicardParams {
         tolerance: TOL,
         nested: Some(nested),
+        nonlinear: Some(Nonlinear::Picard),
         ..PicardParams::default()
     }
 }

@@ -1,12 +1,14 @@
 //! Newton–Krylov steps (`[solver] nonlinear = "newton"`, issue #16): the converged grid is
 //! plain Picard's to the tolerance, the stop is honest (the grid is within the tolerance of
 //! the discrete solution, here Picard's to 1e-13), the grids do not depend on the thread
-//! count, and the setting is reachable and checked through the command line.
+//! count, and the setting is reachable and checked through the command line. Newton is the
+//! default of 2D blocks; `anderson` without `nonlinear` selects Picard steps with Anderson
+//! acceleration.
 
 mod common;
 use common::*;
 use ellipgrid::case::LoadedCase;
-use ellipgrid::elliptic::picard::Nonlinear;
+use ellipgrid::elliptic::picard::{Nonlinear, PicardParams};
 use ellipgrid::io::plot3d::read_plot3d;
 use ellipgrid::io::Block;
 use ellipgrid::job;
@@ -19,7 +21,7 @@ fn case(file: &str, edit: fn(&str) -> String, nl: Nonlinear, tol: f64) -> Loaded
     let path = root().join("examples").join(file);
     let text = edit(&fs::read_to_string(&path).unwrap());
     let mut case = LoadedCase::parse(&text, Path::new(&path)).unwrap();
-    case.case.solver.picard.nonlinear = nl;
+    case.case.solver.picard.nonlinear = Some(nl);
     case.case.solver.picard.tolerance = tol;
     case
 }
@@ -188,7 +190,7 @@ fn the_command_line_takes_nonlinear_in_case_files_and_smooth() {
             .replace("folding_start.x", &format!("{name}.x"));
         fs::write(dir.path().join(format!("{name}.toml")), t).unwrap();
     };
-    write("picard", "");
+    write("picard", "nonlinear = \"picard\"");
     write("newton", "nonlinear = \"newton\"");
     for args in [
         &["run", "picard.toml", "--write-start", "start.x"][..],
@@ -253,4 +255,177 @@ fn bad_nonlinear_settings_exit_2_naming_the_key_and_write_nothing() {
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("--nonlinear"), "{}", text(&o));
     assert!(!dir.path().join("out.x").exists());
+}
+
+/// The blocks' Picard reports of a generation: (iteration, Anderson depth, fine steps).
+fn iterations(g: &job::Generated) -> Vec<(Nonlinear, usize, usize)> {
+    g.report
+        .blocks
+        .iter()
+        .map(|b| {
+            let p = b.picard.as_ref().expect("a Picard report");
+            assert!(p.converged, "{}: not converged", b.name);
+            (p.nonlinear, p.anderson, p.steps)
+        })
+        .collect()
+}
+
+#[test]
+fn the_default_is_newton_and_anderson_alone_selects_picard() {
+    // the resolution of the setting, in its one place
+    // (Newton on planar grids, 2 coordinates; Picard on minimal surfaces, 3)
+    let d = PicardParams::default();
+    assert_eq!((d.nonlinear, d.iteration(2)), (None, Nonlinear::Newton));
+    assert_eq!(d.iteration(3), Nonlinear::Picard);
+    let aa = PicardParams {
+        anderson: 3,
+        ..PicardParams::default()
+    };
+    assert_eq!(aa.iteration(2), Nonlinear::Picard);
+    assert!(aa.check().is_ok());
+    let explicit = PicardParams {
+        nonlinear: Some(Nonlinear::Newton),
+        ..aa.clone()
+    };
+    let m = explicit.check().unwrap_err();
+    assert!(
+        m.contains("anderson = 3") && m.contains("nonlinear = \"newton\""),
+        "{m}"
+    );
+    // the folded start as shipped (no `nonlinear` key): Newton's steps and grid, bit for bit
+    let path = root().join("examples/folding_start.toml");
+    let text = fs::read_to_string(&path).unwrap();
+    let load = |solver: &str| {
+        let t = text.replace("[solver]", &format!("[solver]\n{solver}"));
+        let case = LoadedCase::parse(&t, &path).unwrap();
+        job::generate(&case, |_| {}).unwrap()
+    };
+    let default = load("");
+    let newton = load("nonlinear = \"newton\"");
+    let picard = load("nonlinear = \"picard\"");
+    let (id, in_, ip) = (
+        iterations(&default),
+        iterations(&newton),
+        iterations(&picard),
+    );
+    println!("default {id:?}, newton {in_:?}, picard {ip:?}");
+    assert_eq!(id, in_);
+    assert!(id.iter().all(|&(n, a, _)| n == Nonlinear::Newton && a == 0));
+    assert!(ip.iter().all(|&(n, a, _)| n == Nonlinear::Picard && a == 0));
+    assert!(steps(&default) < steps(&picard), "{id:?} against {ip:?}");
+    assert_eq!(
+        format!("{:?}", default.blocks),
+        format!("{:?}", newton.blocks)
+    );
+    assert!(difference(&default, &picard) <= 2e-10);
+    // anderson alone: Picard steps with Anderson acceleration, as when both are set
+    let anderson = load("anderson = 3");
+    let both = load("nonlinear = \"picard\"\nanderson = 3");
+    let ia = iterations(&anderson);
+    assert_eq!(ia, iterations(&both));
+    assert!(ia.iter().all(|&(n, a, _)| n == Nonlinear::Picard && a == 3));
+    assert_eq!(
+        format!("{:?}", anderson.blocks),
+        format!("{:?}", both.blocks)
+    );
+    assert!(difference(&anderson, &picard) <= 2e-10);
+}
+
+#[test]
+fn minimal_surfaces_default_to_picard_and_take_newton_when_asked() {
+    // Scherk's surface as shipped (a minimal-surface block, 49²): Picard steps unless
+    // `nonlinear = "newton"` (measured: Newton costs 1.5–1.8× Picard's work units there)
+    let path = root().join("examples/scherk.toml");
+    let text = fs::read_to_string(&path).unwrap();
+    let load = |solver: &str| {
+        let t = text.replace("[solver]", &format!("[solver]\n{solver}"));
+        let case = LoadedCase::parse(&t, &path).unwrap();
+        job::generate(&case, |_| {}).unwrap()
+    };
+    let (default, newton) = (load(""), load("nonlinear = \"newton\""));
+    let (id, in_) = (iterations(&default), iterations(&newton));
+    println!("Scherk: default {id:?}, newton {in_:?}");
+    assert!(id.iter().all(|&(n, _, _)| n == Nonlinear::Picard));
+    assert!(in_.iter().all(|&(n, _, _)| n == Nonlinear::Newton));
+    assert!(steps(&newton) < steps(&default), "{in_:?} against {id:?}");
+    assert_eq!(
+        format!("{:?}", default.blocks),
+        format!("{:?}", load("nonlinear = \"picard\"").blocks)
+    );
+}
+
+/// The first block's Picard report of a JSON report file: (nonlinear, anderson, steps).
+fn reported(path: &Path) -> (String, u64, u64) {
+    let r: serde_json::Value = serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap();
+    let p = &r["blocks"][0]["picard"];
+    (
+        p["nonlinear"].as_str().expect("nonlinear").to_string(),
+        p["anderson"].as_u64().unwrap_or(0),
+        p["steps"].as_u64().expect("steps"),
+    )
+}
+
+#[test]
+fn the_command_line_defaults_to_newton_and_anderson_to_picard() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = fs::read_to_string(root().join("examples/folding_start.toml")).unwrap();
+    let mut reports = Vec::new();
+    for (name, solver) in [
+        ("default", ""),
+        ("newton", "nonlinear = \"newton\""),
+        ("picard", "nonlinear = \"picard\""),
+        ("anderson", "anderson = 3"),
+    ] {
+        let t = case
+            .replace("[solver]", &format!("[solver]\n{solver}"))
+            .replace("folding_start.x", &format!("{name}.x"));
+        fs::write(dir.path().join(format!("{name}.toml")), t).unwrap();
+        let report = format!("{name}.json");
+        let mut args = vec!["run", &*format!("{name}.toml"), "--report", &*report, "-q"]
+            .into_iter()
+            .map(str::to_string)
+            .collect::<Vec<_>>();
+        if name == "default" {
+            args.extend(["--write-start".to_string(), "start.x".to_string()]);
+        }
+        let args: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
+        let o = ellipgrid(dir.path(), &args);
+        assert!(o.status.success(), "{name}: {}", text(&o));
+        reports.push(reported(&dir.path().join(report)));
+    }
+    println!("default, newton, picard, anderson: {reports:?}");
+    let (default, newton, picard, anderson) = (&reports[0], &reports[1], &reports[2], &reports[3]);
+    assert_eq!(default, newton);
+    assert_eq!(default.0, "newton");
+    assert_eq!((picard.0.as_str(), picard.1), ("picard", 0));
+    assert!(default.2 < picard.2, "{default:?} against {picard:?}");
+    assert_eq!((anderson.0.as_str(), anderson.1), ("picard", 3));
+    let grid = |name: &str| read(&dir.path().join(format!("{name}.x")));
+    assert_eq!(grid("default").coords(), grid("newton").coords());
+    assert!(max_diff(&grid("anderson"), &grid("picard")) <= 2e-10);
+    // smooth: without --nonlinear, Newton's steps and grid
+    for (out, flag) in [
+        ("s_default", None),
+        ("s_newton", Some("newton")),
+        ("s_picard", Some("picard")),
+    ] {
+        let (x, json) = (format!("{out}.x"), format!("{out}.json"));
+        let mut args = vec!["smooth", "start.x", "-o", &x, "--report", &json, "-q"];
+        if let Some(f) = flag {
+            args.extend(["--nonlinear", f]);
+        }
+        let o = ellipgrid(dir.path(), &args);
+        assert!(o.status.success(), "{out}: {}", text(&o));
+    }
+    let (sd, sn, sp) = (
+        reported(&dir.path().join("s_default.json")),
+        reported(&dir.path().join("s_newton.json")),
+        reported(&dir.path().join("s_picard.json")),
+    );
+    println!("smooth default {sd:?}, newton {sn:?}, picard {sp:?}");
+    assert_eq!(sd, sn);
+    assert_eq!((sd.0.as_str(), sp.0.as_str()), ("newton", "picard"));
+    assert!(sd.2 < sp.2, "{sd:?} against {sp:?}");
+    assert_eq!(grid("s_default").coords(), grid("s_newton").coords());
+    assert!(max_diff(&grid("s_default"), &grid("s_picard")) <= 2e-10);
 }

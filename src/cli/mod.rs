@@ -74,9 +74,11 @@ enum Command {
         /// Picard tolerance (max node update / block diameter).
         #[arg(long, default_value_t = 1e-10)]
         tolerance: f64,
-        /// Nonlinear iteration: "picard" or "newton" (Newton–Krylov; README "Nonlinear solve").
-        #[arg(long, default_value = "picard", value_parser = ["picard", "newton"])]
-        nonlinear: String,
+        /// Nonlinear iteration: "newton" (Newton–Krylov, the default of planar blocks) or
+        /// "picard" (the default of minimal surfaces; README "Nonlinear solve"); volume blocks
+        /// always take Picard steps.
+        #[arg(long, value_parser = ["picard", "newton"])]
+        nonlinear: Option<String>,
         /// Make the grid orthogonal at these edges (Section 2.4), e.g. `--orthogonal E1,E3`.
         #[arg(long, value_delimiter = ',', value_name = "E,..")]
         orthogonal: Vec<String>,
@@ -159,11 +161,13 @@ pub fn main() -> ExitCode {
                 linear,
                 picard: PicardParams {
                     tolerance,
-                    nonlinear: if nonlinear == "newton" {
-                        Nonlinear::Newton
-                    } else {
-                        Nonlinear::Picard
-                    },
+                    nonlinear: nonlinear.map(|n| {
+                        if n == "newton" {
+                            Nonlinear::Newton
+                        } else {
+                            Nonlinear::Picard
+                        }
+                    }),
                     ..PicardParams::default()
                 },
                 orthogonal,

@@ -1,6 +1,6 @@
 //! Human-readable output of a run: the Picard history and the quality table per block.
 
-use ellipgrid::elliptic::picard::PicardInfo;
+use ellipgrid::elliptic::picard::{Nonlinear, PicardInfo};
 use ellipgrid::job::smooth::SmoothReport;
 use ellipgrid::job::{BlockReport, RunReport};
 
@@ -160,11 +160,21 @@ pub fn volume(v: &ellipgrid::job::volume::VolumeReport) {
     }
 }
 
-/// Prints a Picard history.
+/// The name of the nonlinear iteration a report ran, with its Anderson depth.
+fn iteration(p: &PicardInfo) -> String {
+    match (p.nonlinear, p.anderson) {
+        (Nonlinear::Newton, _) => "Newton–Krylov".into(),
+        (Nonlinear::Picard, 0) => "Picard".into(),
+        (Nonlinear::Picard, k) => format!("Picard, Anderson depth {k}"),
+    }
+}
+
+/// Prints a Picard (or Newton–Krylov) history.
 pub fn history(p: &PicardInfo) {
     println!(
-        "  {} Picard steps ({}), {}",
+        "  {} steps ({}; {}), {}",
         p.steps,
+        iteration(p),
         p.linear_solver,
         if p.converged {
             "converged".to_string()
@@ -193,7 +203,7 @@ pub fn history(p: &PicardInfo) {
     println!("  final residual[24] {:.3e}", p.final_residual);
     if let Some(wu) = p.work_units {
         println!(
-            "  nested iteration: coarse-level Picard steps {:?}; whole grid {:.1} work units",
+            "  nested iteration: coarse-level steps {:?}; whole grid {:.1} work units",
             p.coarse_steps, wu
         );
     }
@@ -205,9 +215,10 @@ pub fn not_converged(r: &RunReport) {
         let Some(p) = &b.picard else { continue };
         if !p.converged {
             eprintln!(
-                "warning: block '{}': Picard iteration stopped after {} steps at update {:.3e} \
+                "warning: block '{}': {} iteration stopped after {} steps at update {:.3e} \
                  (tolerance {:.1e})",
                 b.name,
+                iteration(p),
                 p.steps,
                 p.history.last().map_or(f64::NAN, |s| s.update),
                 p.tolerance

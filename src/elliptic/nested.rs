@@ -78,9 +78,9 @@ pub const COARSE_STOP: f64 = 1e-3;
 pub const COARSE_STOP_NEWTON: f64 = 3e-2;
 
 /// The relative stop of a level whose stop is `stop` ([`COARSE_STOP`] on a coarse level, 0
-/// on the finest) for the nonlinear iteration of `params`.
-fn level_stop(params: &PicardParams, stop: f64) -> f64 {
-    if stop > 0.0 && params.nonlinear == Nonlinear::Newton {
+/// on the finest) for the nonlinear iteration of `params` on a grid of `D` coordinates.
+fn level_stop<const D: usize>(params: &PicardParams, stop: f64) -> f64 {
+    if stop > 0.0 && params.iteration(D) == Nonlinear::Newton {
         COARSE_STOP_NEWTON
     } else {
         stop
@@ -344,7 +344,7 @@ pub fn grid_block_nested<const D: usize>(
         start: None,
     };
     run(block, &sizes, place, t0, |x, ctrl, stop, at, _| {
-        poisson2d::solve_timed(x, ctrl, solver, params, level_stop(params, stop), at)
+        poisson2d::solve_timed(x, ctrl, solver, params, level_stop::<D>(params, stop), at)
     })
 }
 
@@ -372,7 +372,7 @@ pub(crate) fn solve_nested_from<const D: usize>(
         start: Some(start),
     };
     run(block, &sizes, place, t0, |x, ctrl, stop, at, _| {
-        poisson2d::solve_timed(x, ctrl, solver, params, level_stop(params, stop), at)
+        poisson2d::solve_timed(x, ctrl, solver, params, level_stop::<D>(params, stop), at)
     })
 }
 

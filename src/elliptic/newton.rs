@@ -259,6 +259,7 @@ pub(crate) fn run<S: NewtonSystem>(
         None => evaluate(&mut *sys),
     };
     let info = picard::info(
+        picard::Nonlinear::Newton,
         sys.linear().solver.name(),
         params,
         history,

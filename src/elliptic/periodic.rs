@@ -309,7 +309,7 @@ pub fn solve<const D: usize>(
         damp: DAMPING,
         fd: None,
     };
-    let run = if params.nonlinear == Nonlinear::Newton {
+    let run = if params.iteration(D) == Nonlinear::Newton {
         newton::run
     } else {
         picard::run

@@ -43,20 +43,25 @@ pub struct PicardParams {
     /// the fine Picard steps but not wall-clock time (the stop can no longer use the
     /// contraction estimate, and the mixing costs ~6 % of a step).
     pub anderson: usize,
-    /// The nonlinear iteration: Picard steps [43, 44] (default) or Newton–Krylov steps
-    /// ([`crate::elliptic::newton`]; 2D blocks and minimal surfaces).
-    pub nonlinear: Nonlinear,
+    /// The nonlinear iteration asked for: Picard steps [43, 44] or Newton–Krylov steps
+    /// ([`crate::elliptic::newton`]; planar, periodic and minimal-surface blocks). `None`
+    /// (default): Newton on planar and periodic blocks, Picard on minimal surfaces or if
+    /// `anderson` > 0; resolved by [`PicardParams::iteration`]. Volume blocks always take
+    /// Picard steps.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nonlinear: Option<Nonlinear>,
 }
 
 /// The nonlinear iteration of a grid system (`[solver] nonlinear`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Nonlinear {
-    /// Picard iteration [43, 44]: the metric coefficients frozen at each step.
+    /// Picard iteration [43, 44]: the metric coefficients frozen at each step (the default
+    /// of a report read without the field; as a setting, see [`PicardParams::iteration`]).
     #[default]
     Picard,
     /// Newton's method on [24], GMRES preconditioned by the Picard operator's solver
-    /// ([`crate::elliptic::newton`]).
+    /// ([`crate::elliptic::newton`]): the default of planar and periodic blocks.
     Newton,
 }
 
@@ -85,7 +90,7 @@ impl Default for PicardParams {
             linear_forcing: 0.1,
             nested: None,
             anderson: 0,
-            nonlinear: Nonlinear::Picard,
+            nonlinear: None,
         }
     }
 }
@@ -120,9 +125,10 @@ impl PicardParams {
         count("max_steps", self.max_steps, 1, MAX_STEPS)?;
         count("linear_max_iter", self.linear_max_iter, 1, MAX_STEPS)?;
         count("anderson", self.anderson, 0, MAX_ANDERSON)?;
-        if self.anderson > 0 && self.nonlinear == Nonlinear::Newton {
+        if self.anderson > 0 && self.nonlinear == Some(Nonlinear::Newton) {
             return Err(format!(
-                "anderson = {}: accelerates Picard steps only; use anderson = 0 with nonlinear = \"newton\"",
+                "anderson = {}: accelerates Picard steps only, and nonlinear = \"newton\" is set: \
+                 remove nonlinear (anderson alone selects Picard steps) or set anderson = 0",
                 self.anderson
             ));
         }
@@ -133,6 +139,22 @@ impl PicardParams {
             ));
         }
         Ok(())
+    }
+
+    /// The nonlinear iteration of a 2D block whose grid has `coordinates` coordinates (2:
+    /// planar, also periodic; 3: a minimal surface): the one set in `nonlinear`, else Picard
+    /// steps if Anderson acceleration is asked for (`anderson` > 0) or on a minimal surface,
+    /// else Newton–Krylov steps. The one place the default is resolved; volume blocks
+    /// ignore it (always Picard). Measured side by side (README "Nonlinear solve";
+    /// `examples/bench_multiblock.rs`, `examples/bench_grid.rs --newton`): on planar blocks
+    /// Newton wins or ties on every bench case but the NLR 7301 flap (~10 % slower), on the
+    /// Scherk minimal surface it costs 1.5–1.8× Picard's work units at 129² to 513².
+    pub fn iteration(&self, coordinates: usize) -> Nonlinear {
+        match self.nonlinear {
+            Some(n) => n,
+            None if self.anderson > 0 || coordinates != 2 => Nonlinear::Picard,
+            None => Nonlinear::Newton,
+        }
     }
 
     /// Whether nested iteration is used with the linear solver called `solver_name`.
@@ -157,6 +179,13 @@ pub struct PicardStep {
 /// What the Picard iteration did: part of every result and report.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PicardInfo {
+    /// The nonlinear iteration that ran ([`PicardParams::iteration`]; volume blocks always
+    /// "picard"). Newton's iteration takes Picard steps while they contract fast.
+    #[serde(default)]
+    pub nonlinear: Nonlinear,
+    /// Depth of the Anderson acceleration of the Picard steps; absent (0) without.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub anderson: usize,
     /// The linear solver used.
     pub linear_solver: String,
     /// Steps taken.
@@ -346,6 +375,7 @@ pub(crate) fn run<S: System>(
     )?;
     let final_residual = evaluate(&mut *sys);
     let info = info(
+        Nonlinear::Picard,
         sys.linear().solver.name(),
         params,
         history,
@@ -410,9 +440,16 @@ pub(crate) fn iterate(
     Ok((history, false))
 }
 
-/// The report of an iteration by [`iterate`] with the linear solver `solver`, ending at
+/// Serde's test for an absent count.
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// The report of an iteration by [`iterate`] (Picard's `nonlinear` iteration, with the
+/// Anderson depth of `params`, or Newton's) with the linear solver `solver`, ending at
 /// residual `final_residual` (work units and coarse levels are filled in by nested iteration).
 pub(crate) fn info(
+    nonlinear: Nonlinear,
     solver: &str,
     params: &PicardParams,
     history: Vec<PicardStep>,
@@ -420,6 +457,11 @@ pub(crate) fn info(
     final_residual: f64,
 ) -> PicardInfo {
     PicardInfo {
+        nonlinear,
+        anderson: match nonlinear {
+            Nonlinear::Picard => params.anderson,
+            Nonlinear::Newton => 0,
+        },
         linear_solver: solver.to_string(),
         steps: history.len(),
         converged,

@@ -248,7 +248,7 @@ pub(crate) fn solve_timed<const D: usize>(
         scratch: None,
         blocks: false,
     };
-    match params.nonlinear {
+    match params.iteration(D) {
         Nonlinear::Picard => picard::run(&mut sys, params, relative_stop, place, &mut |_, _| {}),
         Nonlinear::Newton => {
             sys.coupling = Some(Coupling::new(nx, ny));
