@@ -520,3 +520,62 @@ fn bare_surfaces_with_poles_are_gridded_and_degenerate_ones_refused() {
     let file = ellipgrid::io::plot3d::read_plot3d(&d.path().join("poles.x")).unwrap();
     assert_eq!(file.blocks.len(), 2);
 }
+
+#[test]
+fn edges_within_three_uncertainties_of_the_file_are_on_the_face() {
+    // plane_notch.step with a vertex lifted 1e-2 off the plane (2e-3 of the loop's size, over
+    // the relative tolerance 1e-3) and the file's uncertainty 5e-3: gridded, every interior
+    // node on the plane z = 0. With the uncertainty 1e-3 the same face is refused, naming
+    // the gap and the tolerance.
+    let path = file("plane_notch_tolerant.step");
+    let faces = read_step_faces(&path).unwrap();
+    assert_eq!(faces[0].uncertainty, 5e-3);
+    let g = grid("plane_notch_tolerant.step", 1, 17).result.grid;
+    assert!(unfolded(&g));
+    for j in 1..16 {
+        for i in 1..16 {
+            assert!(node(&g, i + 17 * j)[2].abs() < 1e-12);
+        }
+    }
+    let d = tempfile::tempdir().unwrap();
+    let tight = d.path().join("tight.step");
+    std::fs::write(
+        &tight,
+        std::fs::read_to_string(&path)
+            .unwrap()
+            .replace("LENGTH_MEASURE(5.E-03)", "LENGTH_MEASURE(1.E-03)"),
+    )
+    .unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "step",
+            "grid",
+            tight.to_str().unwrap(),
+            "--face",
+            "1",
+            "-o",
+            "t.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("from the face's surface (tolerance 5.000e-3)"),
+        "{}",
+        text(&o)
+    );
+    assert!(!d.path().join("t.x").exists());
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "step",
+            "grid",
+            path.to_str().unwrap(),
+            "--face",
+            "1",
+            "-o",
+            "ok.x",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+}

@@ -32,6 +32,17 @@ use truck_stepio::r#in::alias::Surface as StepSurface;
 /// is an error: the edge is not on the face.
 pub const GAP_TOL: f64 = 1e-3;
 
+/// ... unless it is within this many times the file's distance uncertainty
+/// ([`StepFace::uncertainty`]): CAD kernels keep edges within a small multiple of their
+/// resolution of the faces (tolerant edges); CATIA's ventilator has edges 1.1–1.4e-2 off
+/// their faces at an uncertainty of 5e-3.
+pub const UNCERTAINTY_FACTOR: f64 = 3.0;
+
+/// The (relative, absolute) gap tolerances of a face's boundary.
+pub(super) fn gap_tolerance(face: &StepFace) -> (f64, f64) {
+    (GAP_TOL, UNCERTAINTY_FACTOR * face.uncertainty)
+}
+
 /// A gridded CAD face.
 #[derive(Clone, Debug)]
 pub struct FaceGrid {
@@ -175,6 +186,7 @@ fn attempt(
         boundary(
             surface,
             edges,
+            gap_tolerance(face),
             face.orientation,
             (ni, nj),
             dist,
@@ -238,9 +250,11 @@ struct FaceBoundary {
 /// nodes: E3 = q0 → q1 and E4 = q3 → q2 with `ni` nodes by `dist[0]`, E1 = q0 → q3 and
 /// E2 = q1 → q2 with `nj` nodes by `dist[1]`; each gap between them split into `refine`
 /// equal arclengths (the nodes are every `refine`-th point).
+#[allow(clippy::too_many_arguments)]
 fn boundary(
     surface: &CadSurface,
     edges: &[super::LoopEdge],
+    gap_tol: (f64, f64),
     orientation: bool,
     (ni, nj): (usize, usize),
     dist: [&DistributionSpec; 2],
@@ -248,7 +262,7 @@ fn boundary(
     place: &str,
 ) -> Result<FaceBoundary> {
     let err = |m: String| Error::input(place, m);
-    let mut lp = FaceLoop::new(surface, edges, bounds(surface), GAP_TOL, false).map_err(err)?;
+    let mut lp = FaceLoop::new(surface, edges, bounds(surface), gap_tol, false).map_err(err)?;
     let (c, angles) = lp.corners(min_turn);
     let scale = lp.metric_scale();
     let forward = (lp.signed_area(scale) > 0.0) == orientation;

@@ -124,6 +124,9 @@ pub struct StepFace {
     pub loops: std::result::Result<Vec<Vec<LoopEdge>>, String>,
     /// Whether the face's normal is the surface's (as read: `same_sense` already applied).
     pub orientation: bool,
+    /// The file's distance uncertainty (the largest `distance_accuracy_value` of its
+    /// `UNCERTAINTY_MEASURE_WITH_UNIT`s, in its length unit), 0 if it gives none.
+    pub uncertainty: f64,
 }
 
 impl StepFace {
@@ -247,6 +250,10 @@ pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
     for surface in bare {
         faces.push(bare_face(faces.len() + 1, surface));
     }
+    let uncertainty = rewrite::distance_uncertainty(&text);
+    for f in &mut faces {
+        f.uncertainty = uncertainty;
+    }
     if faces.is_empty() {
         return Err(Error::format(
             path,
@@ -347,6 +354,7 @@ fn step_face(index: usize, shell: &Shell, face: &CompressedFace<StepSurface>) ->
         cad_surface: face.surface.clone(),
         loops,
         orientation: face.orientation,
+        uncertainty: 0.0,
     }
 }
 
@@ -374,6 +382,7 @@ fn bare_face(index: usize, surface: StepSurface) -> StepFace {
         cad_surface: surface,
         loops: Ok(Vec::new()),
         orientation: true,
+        uncertainty: 0.0,
     }
 }
 

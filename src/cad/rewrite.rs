@@ -540,6 +540,35 @@ pub(super) fn radian_cone_angles(text: &str) -> Cow<'_, str> {
     apply(text, edits)
 }
 
+/// The file's distance uncertainty: the largest `LENGTH_MEASURE` of its
+/// `UNCERTAINTY_MEASURE_WITH_UNIT`s named `'distance_accuracy_value'` (0 if there is none).
+/// Not a rewrite: read here with the other text scanning.
+pub(super) fn distance_uncertainty(text: &str) -> f64 {
+    let key = "UNCERTAINTY_MEASURE_WITH_UNIT";
+    let mut best: f64 = 0.0;
+    let mut from = 0;
+    while let Some(k) = text[from..].find(key) {
+        let at = from + k + key.len();
+        from = at;
+        let args = top_level_args(&text[at..]);
+        let named = args.get(2).is_some_and(|n| {
+            n.trim_matches('\'')
+                .eq_ignore_ascii_case("distance_accuracy_value")
+        });
+        let value = args.first().and_then(|a| {
+            let a = a.trim();
+            let inner = a.strip_prefix("LENGTH_MEASURE")?.trim().strip_prefix('(')?;
+            inner.strip_suffix(')')?.trim().parse::<f64>().ok()
+        });
+        if let (true, Some(v)) = (named, value) {
+            if v.is_finite() && v > 0.0 {
+                best = best.max(v);
+            }
+        }
+    }
+    best
+}
+
 /// The largest entity id of the text.
 fn max_id(text: &str) -> u64 {
     let b = text.as_bytes();
@@ -634,6 +663,16 @@ mod tests {
             "#10=(GLOBAL_UNIT_ASSIGNED_CONTEXT((#7)));\nENDSEC;",
         );
         assert!(matches!(radian_cone_angles(&two), Cow::Borrowed(_)));
+    }
+
+    #[test]
+    fn the_distance_uncertainty_is_read() {
+        let t = "#95 = UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#92,\n\
+            'distance_accuracy_value','confusion accuracy');\n\
+            #96=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE( 5.0E-03 ),#41,'DISTANCE_ACCURACY_VALUE','');\n\
+            #97=UNCERTAINTY_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(0.1),#42,'angle_accuracy_value','');\n";
+        assert_eq!(distance_uncertainty(t), 5e-3);
+        assert_eq!(distance_uncertainty("#1=LINE();"), 0.0);
     }
 
     #[test]

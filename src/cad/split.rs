@@ -11,7 +11,7 @@
 //! direction (`nj`, `dist_j`, its first spacing at the hole).
 
 use super::band::band;
-use super::face::{bounds, FaceGrid, GAP_TOL};
+use super::face::{bounds, gap_tolerance, FaceGrid};
 use super::holes::{layout, Node, Side};
 use super::trim::{CadSurface, FaceLoop};
 use super::{quietly, Route, StepFace};
@@ -75,7 +75,7 @@ fn holes(
     let edges = face.loops.as_ref().map_err(|e| err(e.clone()))?;
     let mut loops = Vec::with_capacity(edges.len());
     for (l, e) in edges.iter().enumerate() {
-        let lp = FaceLoop::new(surface, e, bounds(surface), GAP_TOL, true)
+        let lp = FaceLoop::new(surface, e, bounds(surface), gap_tolerance(face), true)
             .map_err(|m| err(format!("loop {}: {m}", l + 1)))?;
         loops.push(lp);
     }

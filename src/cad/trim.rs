@@ -63,7 +63,8 @@ fn unwrap(mut uv: [f64; 2], near: [f64; 2], periods: [Option<f64>; 2]) -> [f64; 
 impl<'a> FaceLoop<'a> {
     /// Samples the loop's edges and finds their (u, v) on `surface`; `bounds` is the box
     /// the projection may move in. A boundary point farther than `tol_rel` times the loop's
-    /// size from the surface is an error; so is a loop that winds around the surface unless
+    /// size (or `tol_abs`, if larger: from the file's uncertainty) from the surface is an
+    /// error; so is a loop that winds around the surface unless
     /// `winding` (then [`FaceLoop::winding`] says by how much).
     ///
     /// # Errors
@@ -73,7 +74,7 @@ impl<'a> FaceLoop<'a> {
         surface: &'a CadSurface,
         edges: &[LoopEdge],
         bounds: [[f64; 2]; 2],
-        tol_rel: f64,
+        (tol_rel, tol_abs): (f64, f64),
         winding: bool,
     ) -> Result<FaceLoop<'a>, String> {
         if edges.is_empty() {
@@ -118,7 +119,7 @@ impl<'a> FaceLoop<'a> {
             periods: surface.periods(),
             edges: Vec::new(),
             gap: 0.0,
-            tol: tol_rel * size,
+            tol: (tol_rel * size).max(tol_abs),
             scale: [1.0; 2],
             winding: None,
         };
