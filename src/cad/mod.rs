@@ -15,6 +15,7 @@
 //! | `write` | [`write_step_surface`]: one B-spline face bounded by its four iso-parameter sides |
 //! | `prescan` | bounds on the STEP text before truck-stepio expands it |
 //! | `rewrite` | entity forms truck-stepio loses, rewritten in the text to ones it reads |
+//! | `units` | the file's plane angle unit (cone angles to radians) and distance uncertainty |
 //!
 //! Two routes grid a face ([`Route`]):
 //! - an *untrimmed four-sided patch* (a B-spline or NURBS surface whose boundary edges lie on
@@ -57,6 +58,7 @@ mod prescan;
 mod rewrite;
 mod split;
 mod trim;
+mod units;
 mod write;
 
 pub use face::{grid_face, FaceGrid};
@@ -229,7 +231,7 @@ pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
     let text = rewrite::unnamed_labels(&text);
     let text = rewrite::untrim_curves(&text);
     let text = rewrite::default_ref_directions(&text);
-    let text = rewrite::radian_cone_angles(&text);
+    let text = units::radian_cone_angles(&text);
     let shells = quietly(|| parse_shells(&text))
         .map_err(|p| {
             let msg = p
@@ -250,7 +252,7 @@ pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
     for surface in bare {
         faces.push(bare_face(faces.len() + 1, surface));
     }
-    let uncertainty = rewrite::distance_uncertainty(&text);
+    let uncertainty = units::distance_uncertainty(&text);
     for f in &mut faces {
         f.uncertainty = uncertainty;
     }

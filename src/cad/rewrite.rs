@@ -11,8 +11,8 @@
 //! - [`default_ref_directions`]: an `AXIS2_PLACEMENT_3D` without a reference direction gets
 //!   ISO 10303-42's default (truck takes (1, 0, 0) always, which is NaN for an axis along x:
 //!   CATIA writes such circles);
-//! - [`radian_cone_angles`]: a cone's semi-angle in the file's plane angle unit (Creo,
-//!   Inventor, Pro/E, UG write degrees) is written in radians, which truck assumes.
+//! - [`super::units::radian_cone_angles`] (in `units`): a cone's semi-angle in the file's
+//!   plane angle unit (Creo, Inventor, Pro/E, UG write degrees) written in radians.
 
 use super::prescan::top_level_args;
 use std::borrow::Cow;
@@ -106,17 +106,17 @@ pub(super) fn unnamed_labels(text: &str) -> Cow<'_, str> {
 
 /// A simple entity instance `#id = NAME(…)`: its id, type name and the byte where its
 /// argument list opens.
-struct Instance<'a> {
-    id: u64,
-    name: &'a str,
+pub(super) struct Instance<'a> {
+    pub id: u64,
+    pub name: &'a str,
     /// where `#id` starts
     start: usize,
-    open: usize,
+    pub open: usize,
 }
 
 /// The simple entity instances of a STEP text whose type is one of `names` (complex
 /// instances `#id = (A(…) B(…))` are left out).
-fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> {
+pub(super) fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> {
     let b = text.as_bytes();
     let mut out = Vec::new();
     let (mut i, mut depth, mut in_str) = (0usize, 0usize, false);
@@ -209,12 +209,12 @@ fn statement_end(text: &str, open: usize) -> Option<usize> {
 }
 
 /// Byte offset of `arg` (a slice of `text`) in `text`.
-fn offset(text: &str, arg: &str) -> usize {
+pub(super) fn offset(text: &str, arg: &str) -> usize {
     arg.as_ptr() as usize - text.as_ptr() as usize
 }
 
 /// `#n` as n.
-fn reference(arg: &str) -> Option<u64> {
+pub(super) fn reference(arg: &str) -> Option<u64> {
     arg.strip_prefix('#')?.parse().ok()
 }
 
@@ -228,7 +228,7 @@ fn logical(arg: &str) -> Option<bool> {
 }
 
 /// Applies replacements (byte range, new text), which must not overlap.
-fn apply<'a>(text: &'a str, mut edits: Vec<(usize, usize, String)>) -> Cow<'a, str> {
+pub(super) fn apply<'a>(text: &'a str, mut edits: Vec<(usize, usize, String)>) -> Cow<'a, str> {
     if edits.is_empty() {
         return Cow::Borrowed(text);
     }
@@ -434,141 +434,6 @@ pub(super) fn default_ref_directions(text: &str) -> Cow<'_, str> {
     apply(text, edits)
 }
 
-/// Every entity instance (`#id = …;`, simple or complex) as its id and its text after `=`
-/// up to the closing `;`, for the instances whose text contains one of `needles`.
-fn bodies<'a>(text: &'a str, needles: &[&str]) -> HashMap<u64, &'a str> {
-    let b = text.as_bytes();
-    let mut out = HashMap::new();
-    let (mut i, mut depth, mut in_str) = (0usize, 0usize, false);
-    let mut open: Option<(u64, usize)> = None;
-    while i < b.len() {
-        let c = b[i];
-        i += 1;
-        if in_str {
-            in_str = c != b'\'';
-            continue;
-        }
-        match c {
-            b'\'' => in_str = true,
-            b'(' => depth += 1,
-            b')' => depth = depth.saturating_sub(1),
-            b';' if depth == 0 => {
-                if let Some((id, from)) = open.take() {
-                    let body = &text[from..i - 1];
-                    if needles.iter().any(|n| body.contains(n)) {
-                        out.insert(id, body);
-                    }
-                }
-            }
-            b'#' if depth == 0 && open.is_none() => {
-                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
-                if let Ok(id) = text[i..end].parse::<u64>() {
-                    if let Some(rest) = text[end..].trim_start().strip_prefix('=') {
-                        open = Some((id, text.len() - rest.len()));
-                    }
-                }
-                i = end;
-            }
-            _ => {}
-        }
-    }
-    out
-}
-
-/// The radians per unit of the plane angle unit `body` (an SI radian: 1; a conversion-based
-/// unit: its `PLANE_ANGLE_MEASURE` in radians), or `None` for a unit not understood.
-fn radians_per_unit(bodies: &HashMap<u64, &str>, body: &str) -> Option<f64> {
-    if body.contains("SI_UNIT") && body.contains(".RADIAN.") {
-        let milli = body.contains(".MILLI.");
-        return Some(if milli { 1e-3 } else { 1.0 });
-    }
-    let k = body.find("CONVERSION_BASED_UNIT")?;
-    let args = top_level_args(&body[k + "CONVERSION_BASED_UNIT".len()..]);
-    let measure = bodies.get(&reference(args.get(1)?)?)?;
-    let k = measure.find("PLANE_ANGLE_MEASURE(")? + "PLANE_ANGLE_MEASURE(".len();
-    let value: f64 = measure[k..].split(')').next()?.trim().parse().ok()?;
-    let base = top_level_args(&measure[measure.find('(')?..]);
-    let base = bodies.get(&reference(base.get(1)?)?)?;
-    (base.contains(".RADIAN.") && !base.contains(".MILLI.") && value > 0.0).then_some(value)
-}
-
-/// The cone semi-angles (`CONICAL_SURFACE`'s fourth attribute) are written in radians when
-/// every unit context of the file (`GLOBAL_UNIT_ASSIGNED_CONTEXT`) measures plane angles in
-/// one unit other than the radian (files of several parts with different angle units are
-/// left as they are).
-pub(super) fn radian_cone_angles(text: &str) -> Cow<'_, str> {
-    if !text.contains("CONICAL_SURFACE") || !text.contains("CONVERSION_BASED_UNIT") {
-        return Cow::Borrowed(text);
-    }
-    let units = bodies(text, &["PLANE_ANGLE", "GLOBAL_UNIT_ASSIGNED_CONTEXT"]);
-    let mut factors: Vec<f64> = Vec::new();
-    for body in units.values() {
-        let Some(k) = body.find("GLOBAL_UNIT_ASSIGNED_CONTEXT") else {
-            continue;
-        };
-        let args = top_level_args(&body[k + "GLOBAL_UNIT_ASSIGNED_CONTEXT".len()..]);
-        let Some(list) = args.first() else { continue };
-        for unit in top_level_args(list) {
-            let Some(u) = reference(unit).and_then(|r| units.get(&r)) else {
-                continue;
-            };
-            if u.contains("PLANE_ANGLE_UNIT") {
-                match radians_per_unit(&units, u) {
-                    Some(f) => factors.push(f),
-                    None => return Cow::Borrowed(text),
-                }
-            }
-        }
-    }
-    let f = match factors.first() {
-        Some(&f) if factors.iter().all(|&g| (g - f).abs() <= 1e-12 * f) => f,
-        _ => return Cow::Borrowed(text),
-    };
-    if (f - 1.0).abs() <= 1e-12 {
-        return Cow::Borrowed(text);
-    }
-    let mut edits = Vec::new();
-    for e in instances(text, &["CONICAL_SURFACE"]) {
-        let a = top_level_args(&text[e.open..]);
-        if let Some(angle) = a.get(3) {
-            if let Ok(v) = angle.parse::<f64>() {
-                let at = offset(text, angle);
-                edits.push((at, at + angle.len(), format!("{:.17E}", v * f)));
-            }
-        }
-    }
-    apply(text, edits)
-}
-
-/// The file's distance uncertainty: the largest `LENGTH_MEASURE` of its
-/// `UNCERTAINTY_MEASURE_WITH_UNIT`s named `'distance_accuracy_value'` (0 if there is none).
-/// Not a rewrite: read here with the other text scanning.
-pub(super) fn distance_uncertainty(text: &str) -> f64 {
-    let key = "UNCERTAINTY_MEASURE_WITH_UNIT";
-    let mut best: f64 = 0.0;
-    let mut from = 0;
-    while let Some(k) = text[from..].find(key) {
-        let at = from + k + key.len();
-        from = at;
-        let args = top_level_args(&text[at..]);
-        let named = args.get(2).is_some_and(|n| {
-            n.trim_matches('\'')
-                .eq_ignore_ascii_case("distance_accuracy_value")
-        });
-        let value = args.first().and_then(|a| {
-            let a = a.trim();
-            let inner = a.strip_prefix("LENGTH_MEASURE")?.trim().strip_prefix('(')?;
-            inner.strip_suffix(')')?.trim().parse::<f64>().ok()
-        });
-        if let (true, Some(v)) = (named, value) {
-            if v.is_finite() && v > 0.0 {
-                best = best.max(v);
-            }
-        }
-    }
-    best
-}
-
 /// The largest entity id of the text.
 fn max_id(text: &str) -> u64 {
     let b = text.as_bytes();
@@ -586,108 +451,4 @@ fn max_id(text: &str) -> u64 {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn pcurve_masters_are_rewritten() {
-        let t = "#47 = SURFACE_CURVE('',#48,(#52),.PCURVE_S1.);";
-        assert_eq!(
-            prefer_3d_curves(t),
-            "#47 = SURFACE_CURVE('',#48,(#52),.CURVE_3D.);"
-        );
-        assert!(matches!(prefer_3d_curves("#1 = LINE();"), Cow::Borrowed(_)));
-    }
-
-    #[test]
-    fn unset_names_of_geometry_become_empty_and_other_unset_attributes_stay() {
-        let t = "#1=AXIS2_PLACEMENT_3D($,#2,#3,$);\n#4=SI_UNIT($,.METRE.);\n\
-            #5=( BOUNDED_CURVE() REPRESENTATION_ITEM($) );\n#6=CIRCLE('c',#1,1.);\n";
-        let r = unnamed_labels(t);
-        assert!(r.contains("#1=AXIS2_PLACEMENT_3D('',#2,#3,$);"), "{r}");
-        assert!(r.contains("#4=SI_UNIT($,.METRE.);"), "{r}");
-        assert!(r.contains("REPRESENTATION_ITEM('')"), "{r}");
-        assert!(r.contains("#6=CIRCLE('c',#1,1.);"), "{r}");
-    }
-
-    #[test]
-    fn edges_and_swept_surfaces_on_trimmed_curves_refer_to_the_basis_with_the_sense_combined() {
-        let t = "DATA;\n#1=TRIMMED_CURVE($,#2,(#9),(#10),.T.,.CARTESIAN.);\n\
-            #3=TRIMMED_CURVE('',#1,(PARAMETER_VALUE(1.)),(PARAMETER_VALUE(0.)),\n.F.,.UNSPECIFIED.);\n\
-            #4=EDGE_CURVE('',#5,#6,#1,.T.);\n#7 = EDGE_CURVE('a;b',#5,#6, #3 ,.T.);\n\
-            #8=EDGE_CURVE('',#5,#6,#2,.F.);\n#11=SURFACE_OF_LINEAR_EXTRUSION('',#3,#12);\n\
-            #13=ADVANCED_FACE('',(#14),#11,.T.);\n#15=SURFACE_OF_REVOLUTION('',#1,#16);\n\
-            #17=ADVANCED_FACE('',(#14),#15,.F.);\nENDSEC;\n";
-        let r = untrim_curves(t);
-        assert!(r.contains("#4=EDGE_CURVE('',#5,#6,#2,.T.);"), "{r}");
-        assert!(r.contains("#7 = EDGE_CURVE('a;b',#5,#6, #2 ,.F.);"), "{r}");
-        assert!(r.contains("#8=EDGE_CURVE('',#5,#6,#2,.F.);"), "{r}");
-        assert!(
-            !r.contains("TRIMMED_CURVE"),
-            "unreferenced trimmed curves stay: {r}"
-        );
-        assert!(
-            r.contains("#11=SURFACE_OF_LINEAR_EXTRUSION('',#2,#12);"),
-            "{r}"
-        );
-        assert!(r.contains("#13=ADVANCED_FACE('',(#14),#11,.F.);"), "{r}");
-        assert!(r.contains("#15=SURFACE_OF_REVOLUTION('',#2,#16);"), "{r}");
-        assert!(r.contains("#17=ADVANCED_FACE('',(#14),#15,.F.);"), "{r}");
-        assert!(matches!(untrim_curves("#1=LINE();"), Cow::Borrowed(_)));
-    }
-
-    #[test]
-    fn cone_angles_in_degrees_become_radians() {
-        let t = "DATA;\n#1=CONICAL_SURFACE('',#2,1.5,3.E1);\n\
-            #5=(CONVERSION_BASED_UNIT('DEGREE',#6)NAMED_UNIT(*)PLANE_ANGLE_UNIT());\n\
-            #6=PLANE_ANGLE_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(1.745329251994E-2),\n#7);\n\
-            #7=(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.));\n\
-            #8=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n\
-            #9=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNIT_ASSIGNED_CONTEXT((#8,#5))\n\
-            REPRESENTATION_CONTEXT('ID1','3'));\nENDSEC;\n";
-        let r = radian_cone_angles(t);
-        let head = "#1=CONICAL_SURFACE('',#2,1.5,";
-        let k = r.find(head).unwrap() + head.len();
-        let v: f64 = r[k..].split(')').next().unwrap().parse().unwrap();
-        assert!((v - std::f64::consts::PI / 6.0).abs() < 1e-11, "{r}");
-        // radians already, or two contexts in different units: unchanged
-        assert!(matches!(
-            radian_cone_angles(&t.replace(
-                "GLOBAL_UNIT_ASSIGNED_CONTEXT((#8,#5))",
-                "GLOBAL_UNIT_ASSIGNED_CONTEXT((#8,#7))"
-            )),
-            Cow::Borrowed(_)
-        ));
-        let two = t.replace(
-            "ENDSEC;",
-            "#10=(GLOBAL_UNIT_ASSIGNED_CONTEXT((#7)));\nENDSEC;",
-        );
-        assert!(matches!(radian_cone_angles(&two), Cow::Borrowed(_)));
-    }
-
-    #[test]
-    fn the_distance_uncertainty_is_read() {
-        let t = "#95 = UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#92,\n\
-            'distance_accuracy_value','confusion accuracy');\n\
-            #96=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE( 5.0E-03 ),#41,'DISTANCE_ACCURACY_VALUE','');\n\
-            #97=UNCERTAINTY_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(0.1),#42,'angle_accuracy_value','');\n";
-        assert_eq!(distance_uncertainty(t), 5e-3);
-        assert_eq!(distance_uncertainty("#1=LINE();"), 0.0);
-    }
-
-    #[test]
-    fn placements_along_x_without_a_reference_direction_get_one() {
-        let t = "DATA;\n#1=DIRECTION('',(-1.,0.,0.));\n#2=DIRECTION('',(0.,0.,1.E0));\n\
-            #3=AXIS2_PLACEMENT_3D('c',#9,#1,$);\n#4=AXIS2_PLACEMENT_3D('d',#9,#2,$);\n\
-            #5=AXIS2_PLACEMENT_3D('e',#9,#1,#2);\n#12=CIRCLE('',#3,1.);\nENDSEC;\n";
-        let r = default_ref_directions(t);
-        assert!(r.contains("#3=AXIS2_PLACEMENT_3D('c',#9,#1,#13);"), "{r}");
-        assert!(r.contains("#4=AXIS2_PLACEMENT_3D('d',#9,#2,$);"), "{r}");
-        assert!(r.contains("#5=AXIS2_PLACEMENT_3D('e',#9,#1,#2);"), "{r}");
-        assert!(r.contains("#13=DIRECTION('',(0.,0.,1.));\nENDSEC;"), "{r}");
-        assert!(matches!(
-            default_ref_directions(&t.replace("(-1.,0.,0.)", "(0.,1.,0.)")),
-            Cow::Borrowed(_)
-        ));
-    }
-}
+mod tests;
