@@ -236,6 +236,59 @@ fn check_references(text: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// One entity instance `#id = body;` of a STEP text, as byte positions: `start` at its `#`,
+/// `body` just after its `=`, `end` just after its closing `;`.
+pub(super) struct Statement {
+    pub id: u64,
+    pub start: usize,
+    pub body: usize,
+    pub end: usize,
+}
+
+/// The entity instances of a STEP text in order (an `#id =` outside strings at nesting depth
+/// 0 opens one, the next `;` at depth 0 closes it); the one scanner of the rewrites and of
+/// the unit reader.
+pub(super) fn statements(text: &str) -> Vec<Statement> {
+    let b = text.as_bytes();
+    let mut out = Vec::new();
+    let (mut i, mut depth, mut in_str) = (0usize, 0usize, false);
+    let mut open: Option<(u64, usize, usize)> = None;
+    while i < b.len() {
+        let c = b[i];
+        i += 1;
+        if in_str {
+            in_str = c != b'\'';
+            continue;
+        }
+        match c {
+            b'\'' => in_str = true,
+            b'(' => depth += 1,
+            b')' => depth = depth.saturating_sub(1),
+            b';' if depth == 0 => {
+                if let Some((id, start, body)) = open.take() {
+                    out.push(Statement {
+                        id,
+                        start,
+                        body,
+                        end: i,
+                    });
+                }
+            }
+            b'#' if depth == 0 && open.is_none() => {
+                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
+                if let Ok(id) = text[i..end].parse::<u64>() {
+                    if let Some(rest) = text[end..].trim_start().strip_prefix('=') {
+                        open = Some((id, i - 1, text.len() - rest.len()));
+                    }
+                }
+                i = end;
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
 /// The top-level arguments of the list that starts at `s` (with its `(`), as text.
 pub(super) fn top_level_args(s: &str) -> Vec<&str> {
     let (mut depth, mut in_str, mut start) = (0usize, false, 1usize);

@@ -14,7 +14,7 @@
 //! - [`super::units::radian_cone_angles`] (in `units`): a cone's semi-angle in the file's
 //!   plane angle unit (Creo, Inventor, Pro/E, UG write degrees) written in radians.
 
-use super::prescan::top_level_args;
+use super::prescan::{statements, top_level_args};
 use std::borrow::Cow;
 use std::collections::HashMap;
 
@@ -117,51 +117,24 @@ pub(super) struct Instance<'a> {
 /// The simple entity instances of a STEP text whose type is one of `names` (complex
 /// instances `#id = (A(…) B(…))` are left out).
 pub(super) fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> {
-    let b = text.as_bytes();
-    let mut out = Vec::new();
-    let (mut i, mut depth, mut in_str) = (0usize, 0usize, false);
-    while i < b.len() {
-        let c = b[i];
-        i += 1;
-        if in_str {
-            in_str = c != b'\'';
-            continue;
-        }
-        match c {
-            b'\'' => in_str = true,
-            b'(' => depth += 1,
-            b')' => depth = depth.saturating_sub(1),
-            b'#' if depth == 0 => {
-                let start = i - 1;
-                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
-                let Ok(id) = text[i..end].parse::<u64>() else {
-                    continue;
-                };
-                i = end;
-                let rest = text[end..].trim_start();
-                let Some(rest) = rest.strip_prefix('=') else {
-                    continue;
-                };
-                let rest = rest.trim_start();
-                let len = rest
-                    .bytes()
-                    .take_while(|c| c.is_ascii_alphanumeric() || *c == b'_')
-                    .count();
-                let name = &rest[..len];
-                let after = rest[len..].trim_start();
-                if len > 0 && after.starts_with('(') && names.contains(&name) {
-                    out.push(Instance {
-                        id,
-                        name,
-                        start,
-                        open: text.len() - after.len(),
-                    });
-                }
-            }
-            _ => {}
-        }
-    }
-    out
+    statements(text)
+        .into_iter()
+        .filter_map(|st| {
+            let rest = text[st.body..st.end].trim_start();
+            let len = rest
+                .bytes()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == b'_')
+                .count();
+            let name = &rest[..len];
+            let after = rest[len..].trim_start();
+            (len > 0 && after.starts_with('(') && names.contains(&name)).then(|| Instance {
+                id: st.id,
+                name,
+                start: st.start,
+                open: offset(text, after),
+            })
+        })
+        .collect()
 }
 
 /// How often each id of `ids` is referred to (`#n` outside strings and not defining `#n`).

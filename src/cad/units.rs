@@ -2,7 +2,7 @@
 //! for truck-stepio (which assumes radians), and the distance uncertainty that sets how far
 //! an edge may lie from its face.
 
-use super::prescan::top_level_args;
+use super::prescan::{statements, top_level_args};
 use super::rewrite::{apply, instances, offset, reference};
 use std::borrow::Cow;
 use std::collections::HashMap;
@@ -10,42 +10,11 @@ use std::collections::HashMap;
 /// Every entity instance (`#id = …;`, simple or complex) as its id and its text after `=`
 /// up to the closing `;`, for the instances whose text contains one of `needles`.
 fn bodies<'a>(text: &'a str, needles: &[&str]) -> HashMap<u64, &'a str> {
-    let b = text.as_bytes();
-    let mut out = HashMap::new();
-    let (mut i, mut depth, mut in_str) = (0usize, 0usize, false);
-    let mut open: Option<(u64, usize)> = None;
-    while i < b.len() {
-        let c = b[i];
-        i += 1;
-        if in_str {
-            in_str = c != b'\'';
-            continue;
-        }
-        match c {
-            b'\'' => in_str = true,
-            b'(' => depth += 1,
-            b')' => depth = depth.saturating_sub(1),
-            b';' if depth == 0 => {
-                if let Some((id, from)) = open.take() {
-                    let body = &text[from..i - 1];
-                    if needles.iter().any(|n| body.contains(n)) {
-                        out.insert(id, body);
-                    }
-                }
-            }
-            b'#' if depth == 0 && open.is_none() => {
-                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
-                if let Ok(id) = text[i..end].parse::<u64>() {
-                    if let Some(rest) = text[end..].trim_start().strip_prefix('=') {
-                        open = Some((id, text.len() - rest.len()));
-                    }
-                }
-                i = end;
-            }
-            _ => {}
-        }
-    }
-    out
+    statements(text)
+        .into_iter()
+        .map(|st| (st.id, &text[st.body..st.end - 1]))
+        .filter(|(_, body)| needles.iter().any(|n| body.contains(n)))
+        .collect()
 }
 
 /// The radians per unit of the plane angle unit `body` (an SI radian: 1; a conversion-based
