@@ -47,7 +47,8 @@ pub fn collapsed_edges<const D: usize>(edges: [&[[f64; D]]; 4]) -> [bool; 4] {
     })
 }
 
-fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
+/// Euclidean distance of two points.
+pub(crate) fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(u, v)| (u - v) * (u - v))

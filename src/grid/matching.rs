@@ -7,6 +7,7 @@
 //! A side shorter than `tol` (a pole) is never paired. Candidates are found through a hash of
 //! the sides' end nodes on a lattice of spacing `2 tol`, so the search is linear in the sides.
 
+use crate::grid::boundary::dist;
 use crate::grid::{Edge, Grid2};
 use std::collections::HashMap;
 
@@ -30,14 +31,6 @@ pub fn side_nodes<const D: usize>(g: &Grid2<D>, e: Edge) -> Vec<[f64; D]> {
         Edge::E3 => (0..ni).map(|i| g.point(i, 0)).collect(),
         Edge::E4 => (0..ni).map(|i| g.point(i, nj - 1)).collect(),
     }
-}
-
-fn dist<const D: usize>(p: &[f64; D], q: &[f64; D]) -> f64 {
-    p.iter()
-        .zip(q)
-        .map(|(a, b)| (a - b) * (a - b))
-        .sum::<f64>()
-        .sqrt()
 }
 
 /// Lattice cell of a point (spacing `h`).
