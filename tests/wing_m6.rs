@@ -20,10 +20,13 @@ fn small_case() -> String {
 }
 
 /// All four volumes fold-free (only the cells along the 180° edges have a zero corner, by
-/// topology); at the wing the first node within 10 % of the prescribed 1e-5 … 2e-5 local chord
-/// (measured 0.911 … 1.001; the issue asks 5 %: three nodes next to the leading edge of the
-/// tip are 9 % short) and the grid lines on average within 0.5° of the wall normal (measured
-/// 0.18°, at most 7.5° next to the tip's leading edge); the lower volumes are the mirror
+/// topology); at the wing the first node within 1 % of the prescribed 1e-5 … 2e-5 local chord
+/// (measured 0.9996 … 1.0002) and the grid lines within 1° of the wall normal (measured 0.18°
+/// at most, 0.006° on average; 7.5° and 0.911 before the interior faces lost their
+/// orthogonality goals); the grid lines cross the interior faces with the mean kinks measured
+/// (degrees) ahead 57.8, tipplane 62.6, te_up 62.4, wakesheet 18.4, waketip 70.7 (84.6, 92.1,
+/// 57.5, 77.1 and 105.3 before the far wake took the wake sheet's streamwise distribution and
+/// those faces their orthogonality goals were dropped); the lower volumes are the mirror
 /// images of the upper ones (the ONERA D section is symmetric); the connectivity lists the
 /// interfaces.
 #[test]
@@ -56,9 +59,24 @@ fn four_block_c_o_grid_is_fold_free_and_holds_the_wall_spacing() {
             w["ratio_min"].as_f64().unwrap(),
             w["ratio_max"].as_f64().unwrap(),
         );
-        assert!(lo >= 0.9 && hi <= 1.01, "{}: {w}", v["name"]);
-        assert!(w["angle_mean_deg"].as_f64().unwrap() < 0.5, "{w}");
-        assert!(w["angle_max_deg"].as_f64().unwrap() < 10.0, "{w}");
+        assert!(lo >= 0.99 && hi <= 1.01, "{}: {w}", v["name"]);
+        assert!(w["angle_mean_deg"].as_f64().unwrap() < 0.05, "{w}");
+        assert!(w["angle_max_deg"].as_f64().unwrap() < 1.0, "{w}");
+    }
+    // Mean kink (degrees) of the grid lines crossing each interior face: the measured value
+    // with about 10 % margin.
+    let kinks = r["face_interfaces"].as_array().unwrap();
+    for (face, bound) in [
+        ("ahead", 64.0),
+        ("tipplane", 69.0),
+        ("te_up", 69.0),
+        ("te_lo", 69.0),
+        ("wakesheet", 21.0),
+        ("waketip", 78.0),
+    ] {
+        let f = kinks.iter().find(|f| f["face"] == face).unwrap();
+        let mean = f["kink_mean_deg"].as_f64().unwrap();
+        assert!(mean < bound, "{face}: mean kink {mean}° (bound {bound}°)");
     }
     let file = read_plot3d(&d.path().join("m6.x")).unwrap();
     let g: Vec<_> = file
