@@ -14,7 +14,7 @@
 //! - [`super::units::radian_cone_angles`] (in `units`): a cone's semi-angle in the file's
 //!   plane angle unit (Creo, Inventor, Pro/E, UG write degrees) written in radians.
 
-use super::prescan::{statements, top_level_args};
+use super::prescan::{references, statements, top_level_args};
 use std::borrow::Cow;
 use std::collections::HashMap;
 
@@ -112,13 +112,14 @@ pub(super) struct Instance<'a> {
     /// where `#id` starts
     start: usize,
     pub open: usize,
+    /// the byte after the `;` that closes the instance
+    end: usize,
 }
 
 /// The simple entity instances of a STEP text whose type is one of `names` (complex
 /// instances `#id = (A(…) B(…))` are left out).
 pub(super) fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> {
     statements(text)
-        .into_iter()
         .filter_map(|st| {
             let rest = text[st.body..st.end].trim_start();
             let len = rest
@@ -132,6 +133,7 @@ pub(super) fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> 
                 name,
                 start: st.start,
                 open: offset(text, after),
+                end: st.end,
             })
         })
         .collect()
@@ -139,46 +141,15 @@ pub(super) fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> 
 
 /// How often each id of `ids` is referred to (`#n` outside strings and not defining `#n`).
 fn reference_counts<V>(text: &str, ids: &HashMap<u64, V>) -> HashMap<u64, usize> {
-    let b = text.as_bytes();
     let mut out: HashMap<u64, usize> = ids.keys().map(|&k| (k, 0)).collect();
-    let (mut i, mut in_str) = (0usize, false);
-    while i < b.len() {
-        let c = b[i];
-        i += 1;
-        if in_str {
-            in_str = c != b'\'';
-            continue;
-        }
-        if c == b'\'' {
-            in_str = true;
-        } else if c == b'#' {
-            let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
-            if let Ok(n) = text[i..end].parse::<u64>() {
-                if !text[end..].trim_start().starts_with('=') {
-                    if let Some(k) = out.get_mut(&n) {
-                        *k += 1;
-                    }
-                }
+    for r in references(text) {
+        if !text[r.end..].trim_start().starts_with('=') {
+            if let Some(k) = out.get_mut(&r.id) {
+                *k += 1;
             }
-            i = end;
         }
     }
     out
-}
-
-/// The byte after the `;` that ends the instance whose argument list opens at `open`.
-fn statement_end(text: &str, open: usize) -> Option<usize> {
-    let (mut depth, mut in_str) = (0usize, false);
-    for (k, c) in text[open..].char_indices() {
-        match c {
-            '\'' => in_str = !in_str,
-            '(' if !in_str => depth += 1,
-            ')' if !in_str => depth = depth.checked_sub(1)?,
-            ';' if !in_str && depth == 0 => return Some(open + k + 1),
-            _ => {}
-        }
-    }
-    None
 }
 
 /// Byte offset of `arg` (a slice of `text`) in `text`.
@@ -328,10 +299,7 @@ pub(super) fn untrim_curves(text: &str) -> Cow<'_, str> {
         .collect();
     while let Some(id) = gone.pop() {
         let Some(e) = trimmed.get(&id) else { continue };
-        let Some(end) = statement_end(text, e.open) else {
-            continue;
-        };
-        edits.push((e.start, end, String::new()));
+        edits.push((e.start, e.end, String::new()));
         // a trimmed curve of a trimmed curve: its basis loses a reference
         if let Some(n) = basis.get(&id).and_then(|(b, _)| left.get_mut(b)) {
             *n = n.saturating_sub(1);

@@ -64,3 +64,12 @@ fn placements_along_x_without_a_reference_direction_get_one() {
         Cow::Borrowed(_)
     ));
 }
+
+#[test]
+fn references_in_strings_are_not_counted() {
+    let t = "#1=TRIMMED_CURVE('#1',#2,(#9),(#10),.T.,.CARTESIAN.);\n\
+        #4=EDGE_CURVE('it''s #1',#5,#6,#1,.T.);\n#7=X(#1, '''#1''', #2 );\n#8=Y('#2');\n";
+    let ids: HashMap<u64, ()> = [(1, ()), (2, ()), (3, ())].into_iter().collect();
+    let n = reference_counts(t, &ids);
+    assert_eq!((n[&1], n[&2], n[&3]), (2, 2, 0));
+}
