@@ -239,34 +239,12 @@ fn scan(text: &str) -> impl Iterator<Item = (Statement, bool)> + '_ {
         .chain([None])
         .filter_map(move |token| {
             let Some((i, c)) = token else {
-                let (id, start, body) = open.take()?;
-                let end = text.len();
-                return Some((
-                    Statement {
-                        id,
-                        start,
-                        body,
-                        end,
-                    },
-                    false,
-                ));
+                return close(&mut open, text.len(), false);
             };
             match c {
                 b'(' => depth += 1,
                 b')' => depth = depth.saturating_sub(1),
-                b';' if depth == 0 => {
-                    let (id, start, body) = open.take()?;
-                    let end = i + 1;
-                    return Some((
-                        Statement {
-                            id,
-                            start,
-                            body,
-                            end,
-                        },
-                        true,
-                    ));
-                }
+                b';' if depth == 0 => return close(&mut open, i + 1, true),
                 b'#' if depth == 0 && open.is_none() => {
                     let (id, end) = number_after_hash(text, i)?;
                     let rest = text[end..].trim_start().strip_prefix('=')?;
@@ -276,6 +254,25 @@ fn scan(text: &str) -> impl Iterator<Item = (Statement, bool)> + '_ {
             }
             None
         })
+}
+
+/// The statement `open` (id, start, body) ended at `end`, if one is open, and whether a `;`
+/// closed it.
+fn close(
+    open: &mut Option<(u64, usize, usize)>,
+    end: usize,
+    closed: bool,
+) -> Option<(Statement, bool)> {
+    let (id, start, body) = open.take()?;
+    Some((
+        Statement {
+            id,
+            start,
+            body,
+            end,
+        },
+        closed,
+    ))
 }
 
 /// A reference `#n` in a STEP text: its number and the byte after its digits.
