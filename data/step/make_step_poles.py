@@ -17,6 +17,14 @@ sphere_octant.step: the spherical face of BRepPrimAPI_MakeSphere(1, 0, pi/2, pi/
 octant x, y, z >= 0 of the unit sphere: two meridians from the north pole (0, 0, 1) and the
 quarter equator; area pi / 2.
 
+sphere_lune.step: the spherical face of BRepPrimAPI_MakeSphere(1, -pi/2, pi/2, pi/2), the
+lune 0 <= longitude <= 90 degrees of the unit sphere: two meridians from pole to pole, a loop
+of two edges through both poles (refused: one pole per face only); area pi.
+
+cone_apex_degenerate_edge.step: cone_apex.step with a degenerated edge at the apex written
+into its loop, as some CAD systems write a pole: an EDGE_CURVE from the apex vertex to itself
+on a LINE (zero length), fourth in the loop. Made from cone_apex.step's text (no CAD kernel).
+
 Each face is written alone, read back, checked (one face, three oriented edges in one loop,
 area from BRepGProp to 1e-9 of the closed form) and printed.
 
@@ -62,6 +70,9 @@ def main(out):
         ("sphere_octant.step",
          BRepPrimAPI_MakeSphere(1.0, 0.0, math.pi / 2, math.pi / 2).Shape(), "sphere",
          math.pi / 2.0),
+        ("sphere_lune.step",
+         BRepPrimAPI_MakeSphere(1.0, -math.pi / 2, math.pi / 2, math.pi / 2).Shape(), "sphere",
+         math.pi),
     ]
     for name, solid, kind, exact in cases:
         face = face_of(solid, kind)
@@ -75,8 +86,30 @@ def main(out):
         assert abs(area - exact) < 1e-9 * exact, (name, area, exact)
         text = open(path).read()
         loops = [l for l in text.splitlines() if "EDGE_LOOP" in l]
-        assert len(loops) == 1 and loops[0].count("#") == 4, loops
-        print(f"{name}: {kind}, 1 loop of 3 edges, area OCC {area:.12f}, exact {exact:.12f}")
+        edges = loops[0].count("#") - 1 if len(loops) == 1 else 0
+        assert edges == (2 if name == "sphere_lune.step" else 3), loops
+        print(f"{name}: {kind}, 1 loop of {edges} edges, area OCC {area:.12f}, exact {exact:.12f}")
+    degenerate_edge(out)
+
+
+def degenerate_edge(out):
+    """cone_apex.step with an edge of zero length at the apex closing its loop."""
+    text = open(os.path.join(out, "cone_apex.step")).read()
+    loop = "#19 = EDGE_LOOP('',(#20,#43,#60));"
+    apex = "#24 = VERTEX_POINT('',#25);"
+    assert loop in text and apex in text, "cone_apex.step is not as written by OCC 8.0.1"
+    edge = (
+        "#19 = EDGE_LOOP('',(#20,#43,#60,#900));\n"
+        "#900 = ORIENTED_EDGE('',*,*,#901,.T.);\n"
+        "#901 = EDGE_CURVE('',#24,#24,#902,.T.);\n"
+        "#902 = LINE('',#25,#903);\n"
+        "#903 = VECTOR('',#904,1.);\n"
+        "#904 = DIRECTION('',(1.,0.,0.));"
+    )
+    name = "cone_apex_degenerate_edge.step"
+    with open(os.path.join(out, name), "w") as f:
+        f.write(text.replace(loop, edge).replace("'cone_apex'", "'cone_apex_degenerate_edge'"))
+    print(f"{name}: cone_apex.step with a zero-length edge at the apex")
 
 
 if __name__ == "__main__":
