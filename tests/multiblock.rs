@@ -313,13 +313,13 @@ fn check_connectivity(grid: &Path, conn: &Path) -> ConnFile {
 
 /// Runs a shipped multi-block example through the CLI: every block converged, fold-free and
 /// right-handed; the connectivity file matches the grid node for node and covers every side.
-/// Returns the run report.
+/// Returns the run report and the grid's blocks.
 fn paper_example(
     name: &str,
     interfaces: usize,
     patches: usize,
     families: &[&str],
-) -> serde_json::Value {
+) -> (serde_json::Value, Vec<Block>) {
     let d = tempfile::tempdir().unwrap();
     let case = root().join(format!("examples/{name}.toml"));
     let o = ellipgrid(
@@ -351,7 +351,10 @@ fn paper_example(
     assert_eq!(c.patches.len(), patches, "{name}");
     let names: Vec<&str> = c.families.iter().map(|(_, n)| n.as_str()).collect();
     assert_eq!(names, families, "{name}");
-    r
+    let blocks = read_plot3d(&d.path().join(format!("{name}.x")))
+        .unwrap()
+        .blocks;
+    (r, blocks)
 }
 
 #[test]
@@ -366,7 +369,7 @@ fn the_rae2822_c_grid_example_runs_fold_free_with_a_matching_connectivity_file()
 
 #[test]
 fn the_nlr7301_flap_example_runs_fold_free_with_a_matching_connectivity_file() {
-    let r = paper_example(
+    let (r, blocks) = paper_example(
         "nlr7301_flap",
         11,
         19,
@@ -379,6 +382,59 @@ fn the_nlr7301_flap_example_runs_fold_free_with_a_matching_connectivity_file() {
         let sj = b["quality"]["scaled_jacobian_min"].as_f64().unwrap();
         assert!(sj > 0.5, "{}: smallest scaled Jacobian {sj}", b["name"]);
     }
+    // The four wake lines (the sides of the two base-wake strips, blocks 7 and 8) descend to
+    // the outflow without sagging below it: with only the outflow point beyond x = 2.5 their
+    // splines dipped to y = -0.10 (main) and -0.425 (flap) near x = 9 and came back up.
+    for (b, block) in blocks.iter().enumerate().skip(6) {
+        let g = planar(block);
+        for j in [0, g.nj() - 1] {
+            let line: Vec<[f64; 2]> = (0..g.ni())
+                .map(|i| g.point(i, j))
+                .filter(|p| p[0] > 2.5)
+                .collect();
+            assert!(line.len() > 10, "block {}: {} nodes", b + 1, line.len());
+            for w in line.windows(2) {
+                assert!(
+                    w[1][0] > w[0][0] && w[1][1] < w[0][1],
+                    "block {} j = {j}: the wake line rises or turns back at {:?} -> {:?}",
+                    b + 1,
+                    w[0],
+                    w[1]
+                );
+            }
+        }
+    }
+    // checkMesh's aspect ratio (OpenFOAM's measure) is under its limit of 1000 everywhere:
+    // 1786 on 12 wake cells before, where the sagging splines ran level.
+    for (b, block) in blocks.iter().enumerate() {
+        let (ar, i, j) = foam_aspect_ratio_max(planar(block));
+        assert!(
+            ar < 1000.0,
+            "block {}: aspect ratio {ar} at cell ({i}, {j})",
+            b + 1
+        );
+    }
+}
+
+#[test]
+fn the_foam_aspect_ratio_is_the_ratio_of_a_cells_cartesian_extents() {
+    // A 1 x 0.001 cell along x: 1000; the same cell turned by 90 degrees: 1000; turned by
+    // 45 degrees its extents are equal: 1. A 2 x 1 grid of 0.5 x 0.1 cells: 5.
+    let cell = |angle: f64| {
+        let (c, s) = (angle.cos(), angle.sin());
+        ellipgrid::Grid2::from_fn(2, 2, |i, j| {
+            let (x, y) = (i as f64, 1e-3 * j as f64);
+            [c * x - s * y, s * x + c * y]
+        })
+    };
+    let r = |g: &ellipgrid::Grid2<2>| foam_aspect_ratio_max(g).0;
+    assert!((r(&cell(0.0)) - 1000.0).abs() < 1e-9, "{}", r(&cell(0.0)));
+    let quarter = r(&cell(std::f64::consts::FRAC_PI_2));
+    assert!((quarter - 1000.0).abs() < 1e-6, "{quarter}");
+    let diagonal = r(&cell(std::f64::consts::FRAC_PI_4));
+    assert!((diagonal - 1.0).abs() < 1e-9, "{diagonal}");
+    let g = ellipgrid::Grid2::from_fn(3, 2, |i, j| [0.5 * i as f64, 0.1 * j as f64]);
+    assert_eq!(foam_aspect_ratio_max(&g), (5.0, 0, 0));
 }
 
 #[test]

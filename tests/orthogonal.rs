@@ -8,6 +8,8 @@ use ellipgrid::elliptic::domain::grid_block;
 use ellipgrid::elliptic::orthogonal::orthogonal_steps;
 use ellipgrid::elliptic::picard::PicardParams;
 use ellipgrid::grid::boundary::Boundary2;
+use ellipgrid::io::plot3d::read_plot3d;
+use ellipgrid::io::Block;
 use ellipgrid::quality::{quality2d, quality_surface};
 use ellipgrid::solve::direct::DirectLu;
 use ellipgrid::{Edge, Grid2};
@@ -359,6 +361,21 @@ fn cli_runs_the_orthogonal_examples() {
     );
     let wall = run("airfoil_wall.toml", "wall.json");
     assert!(wall[2] < 0.05, "{wall:?}");
+    // The bump's channel passes checkMesh's aspect-ratio check (385 nodes along the wall:
+    // 2326 with 121), and its floor is flat: with the nearest spline points 0.1 from the bump
+    // the spline overshot there and the floor dipped 4.2e-4, 40 wall spacings.
+    let grid = read_plot3d(&dir.path().join("g.x")).unwrap();
+    let Block::Planar(g) = &grid.blocks[0] else {
+        panic!("a planar block")
+    };
+    let (ar, i, j) = foam_aspect_ratio_max(g);
+    assert!(ar < 1000.0, "aspect ratio {ar} at cell ({i}, {j})");
+    let dip = (0..g.ni())
+        .map(|i| g.point(i, 0))
+        .filter(|p| p[0] < 0.0 || p[0] > 1.0)
+        .map(|p| p[1].abs())
+        .fold(0.0, f64::max);
+    assert!(dip < 2e-5, "the flat floor is {dip} off y = 0");
 }
 
 #[test]

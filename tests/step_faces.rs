@@ -364,8 +364,9 @@ fn entity_forms_of_other_cad_systems_give_the_same_face() {
     // cone_patch.step rewritten as Creo, Inventor and Rhino 8 write (data/step/
     // make_vendor_forms.py): the semi-angle in degrees under a DEGREE unit context, the two
     // circular edges on TRIMMED_CURVEs (one named `$`, one running against its circle), an
-    // unset name on a placement, a placement along x without a reference direction. truck-
-    // stepio alone loses two edges and reads the angle as radians.
+    // unset name on a placement, a placement along x without a reference direction, an empty
+    // list as an attribute (zoo.dev). truck-stepio alone refuses the file at the empty list;
+    // without it, it loses two edges and reads the angle as radians.
     let vendor = "cone_patch_vendor_forms.step";
     for n in [9, 17] {
         let (a, b) = (grid("cone_patch.step", 1, n), grid(vendor, 1, n));

@@ -293,6 +293,8 @@ fn step_grid_all_writes_every_face_of_the_plate_with_its_hole_blocks() {
             "plate.x",
             "-o",
             "plate.vtm",
+            "-o",
+            "plate.conn",
         ],
     );
     let t = text(&o);
@@ -309,6 +311,8 @@ fn step_grid_all_writes_every_face_of_the_plate_with_its_hole_blocks() {
     assert_eq!(written.blocks.len(), 23);
     let vtm = std::fs::read_to_string(dir.path().join("plate.vtm")).unwrap();
     assert!(vtm.contains("face2.b7") && vtm.contains("face9"), "{vtm}");
+    check_connectivity(&written, &dir.path().join("plate.conn"));
+
     // `step list` says how the faces with holes are gridded.
     let o = ellipgrid(dir.path(), &["step", "list", step.to_str().unwrap()]);
     let t = text(&o);
@@ -317,6 +321,84 @@ fn step_grid_all_writes_every_face_of_the_plate_with_its_hole_blocks() {
         t.contains("face 5: plane, 3 boundary loops, gridded as several blocks: an O-type ring"),
         "{t}"
     );
+}
+
+/// The nodes of a 1-based side range of a `.conn` file, from its first node to its last.
+fn range_nodes(
+    blocks: &[ellipgrid::io::Block],
+    (b, from, to): ellipgrid::io::connectivity::Range,
+) -> Vec<[f64; 3]> {
+    let ellipgrid::io::Block::Surface(g) = &blocks[b - 1] else {
+        panic!("not a surface block")
+    };
+    let steps = from[0].abs_diff(to[0]).max(from[1].abs_diff(to[1]));
+    let at = |f: usize, t: usize, k: usize| match t.cmp(&f) {
+        std::cmp::Ordering::Equal => f,
+        std::cmp::Ordering::Greater => f + k,
+        std::cmp::Ordering::Less => f - k,
+    };
+    (0..=steps)
+        .map(|k| {
+            let (i, j) = (at(from[0], to[0], k), at(from[1], to[1], k));
+            node(g, (i - 1) + g.ni() * (j - 1))
+        })
+        .collect()
+}
+
+/// The plate's `.conn` (`step grid --all`): every interface's two sides hold the same nodes,
+/// interfaces and patches together cover every block side once, each face's cuts are its
+/// interfaces (an O-ring of four per hole, and the two rings meet along one cut: 9 per face
+/// with two holes), faces that share a CAD edge with the same nodes on it are joined, and
+/// every patch is of its face's family.
+fn check_connectivity(written: &ellipgrid::io::plot3d::Plot3dFile, conn: &std::path::Path) {
+    let c = ellipgrid::io::connectivity::read(conn).unwrap();
+    let blocks = &written.blocks;
+    // Block names in the written order: face1, face2.b0 … b7, face3, face4, face5.b0 … b7,
+    // face6 … face9.
+    let face_of = |b: usize| match b {
+        1 => 1,
+        2..=9 => 2,
+        10 => 3,
+        11 => 4,
+        12..=19 => 5,
+        _ => b - 14,
+    };
+    let mut covered = std::collections::HashMap::new();
+    let mut side_key = |(b, f, t): ellipgrid::io::connectivity::Range| {
+        let key = (
+            b,
+            f[0].min(t[0]),
+            f[1].min(t[1]),
+            f[0].max(t[0]),
+            f[1].max(t[1]),
+        );
+        *covered.entry(key).or_insert(0) += 1;
+    };
+    let (mut within, mut across) = ([0; 10], 0);
+    for [a, b] in &c.interfaces {
+        let (na, nb) = (range_nodes(blocks, *a), range_nodes(blocks, *b));
+        assert_eq!(na.len(), nb.len());
+        for (p, q) in na.iter().zip(&nb) {
+            let d = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt();
+            assert!(d < 1e-8, "interface {a:?} {b:?}: nodes {d} apart");
+        }
+        side_key(*a);
+        side_key(*b);
+        if face_of(a.0) == face_of(b.0) {
+            within[face_of(a.0)] += 1;
+        } else {
+            across += 1;
+        }
+    }
+    for (r, id) in &c.patches {
+        side_key(*r);
+        let family = &c.families.iter().find(|f| f.0 == *id).unwrap().1;
+        assert_eq!(family, &format!("face{}", face_of(r.0)));
+    }
+    assert_eq!(covered.len(), 4 * blocks.len());
+    assert!(covered.values().all(|&n| n == 1), "{covered:?}");
+    assert_eq!((within[2], within[5]), (9, 9), "{within:?}");
+    assert!(across >= 4, "{across} interfaces between faces");
 }
 
 #[test]

@@ -10,7 +10,9 @@ that CAD systems write and truck-stepio 0.3 alone loses, so that the same face m
 - the edge along the circle of radius 1 (z = 2) on a TRIMMED_CURVE that runs against its
   circle (sense .F., trims by point), the edge's same_sense .F. accordingly;
 - an AXIS2_PLACEMENT_3D along the x axis without a reference direction (CATIA), for a
-  placement the face does not use.
+  placement the face does not use;
+- a PRODUCT whose frame_of_reference is the empty list `()` (zoo.dev), at which the
+  tokenizer of truck-stepio 0.3 refused the whole file.
 
 plane_notch_tolerant.step: plane_notch.step with its vertex (4, 3, 0) moved to (4, 3, 0.01),
 so that its two edges there leave the plane z = 0 by up to 1e-2 (2e-3 of the loop's size 5,
@@ -49,6 +51,7 @@ def main():
         "#101 = AXIS2_PLACEMENT_3D('',#29,#102,$);",
         "#102 = DIRECTION('',(1.,0.,0.));",
         "#103 = CIRCLE('',#101,1.);",
+        "#104 = PRODUCT('p', 'NONE', $, ());",
     ]
     sub("ENDSEC;\nEND-ISO-10303-21;", "\n".join(extra) + "\nENDSEC;\nEND-ISO-10303-21;")
     (out / "cone_patch_vendor_forms.step").write_text(text)

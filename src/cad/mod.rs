@@ -232,7 +232,8 @@ pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
 /// As [`read_step_faces`].
 pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
     prescan::check(text).map_err(|m| Error::format(path, m))?;
-    let text = rewrite::prefer_3d_curves(text);
+    let text = rewrite::empty_lists(text);
+    let text = rewrite::prefer_3d_curves(&text);
     let text = rewrite::unnamed_labels(&text);
     let text = rewrite::untrim_curves(&text);
     let text = rewrite::default_ref_directions(&text);

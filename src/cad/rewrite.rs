@@ -13,6 +13,8 @@
 //!   CATIA writes such circles);
 //! - [`super::units::radian_cone_angles`] (in `units`): a cone's semi-angle in the file's
 //!   plane angle unit (Creo, Inventor, Pro/E, UG write degrees) written in radians.
+//! - [`empty_lists`]: an empty list given as an attribute becomes `$` (zoo.dev writes
+//!   `PRODUCT(…, ())`, at which truck-stepio's tokenizer refuses the whole file).
 
 use super::prescan::{references, statements, top_level_args};
 use std::borrow::Cow;
@@ -372,6 +374,49 @@ pub(super) fn default_ref_directions(text: &str) -> Cow<'_, str> {
         return Cow::Borrowed(text);
     };
     edits.push((end, end, format!("#{id}=DIRECTION('',(0.,0.,1.));\n")));
+    apply(text, edits)
+}
+
+/// Every empty list given as an attribute (`PRODUCT('p', 'p', $, ())`: zoo.dev writes its
+/// products' empty context sets so) becomes `$`: truck-stepio's tokenizer stops at `()` after a
+/// `,` or `(` and refuses the whole file. An entity without attributes (`LENGTH_UNIT()` in a
+/// complex instance) keeps its `()`. None of these attributes is read for the geometry.
+pub(super) fn empty_lists(text: &str) -> Cow<'_, str> {
+    let mut edits = Vec::new();
+    for st in statements(text) {
+        let body = &text[st.body..st.end];
+        let b = body.as_bytes();
+        let mut in_str = false;
+        // The last byte outside strings and whitespace, before position i.
+        let mut last = 0u8;
+        for (i, &c) in b.iter().enumerate() {
+            if in_str {
+                in_str = c != b'\'';
+                if !in_str {
+                    last = c;
+                }
+                continue;
+            }
+            match c {
+                b'\'' => in_str = true,
+                b'(' if matches!(last, b',' | b'(') => {
+                    let close = i
+                        + 1
+                        + b[i + 1..]
+                            .iter()
+                            .take_while(|d| d.is_ascii_whitespace())
+                            .count();
+                    if b.get(close) == Some(&b')') {
+                        edits.push((st.body + i, st.body + close + 1, "$".to_string()));
+                    }
+                }
+                _ => {}
+            }
+            if !c.is_ascii_whitespace() {
+                last = c;
+            }
+        }
+    }
     apply(text, edits)
 }
 

@@ -6,6 +6,7 @@
 pub mod arclength;
 pub mod boundary;
 pub mod faces;
+pub mod matching;
 pub mod topology;
 
 /// Block edges of a 2D block (METHOD.md): E1 = {ξ = 0}, E2 = {ξ = 1}, E3 = {η = 0}, E4 = {η = 1}.

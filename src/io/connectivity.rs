@@ -19,8 +19,10 @@
 //! cover every block side.
 
 use crate::grid::faces::{block_node, face_dims};
+use crate::grid::matching::{Side, SideMatch};
 use crate::grid::topology::volume::{Topology3, VolumeSide};
 use crate::grid::topology::{SideRange, Topology};
+use crate::grid::Edge;
 use crate::io::write_atomic;
 use crate::{Error, Result};
 use std::path::Path;
@@ -166,6 +168,56 @@ pub fn from_topology3(topo: &Topology3) -> ConnFile {
             out.bcs.push((*id, kind));
         }
     }
+    out
+}
+
+/// The connectivity of 2D blocks gridded apart, from the pairs of their sides that coincide
+/// ([`crate::grid::matching::matching_sides`]): those are the interfaces, every other side a
+/// patch of its block's family `family[block]` (families numbered in order of first use).
+/// `dims[block]` = (ni, nj).
+pub fn from_matches(dims: &[[usize; 2]], matches: &[SideMatch], family: &[String]) -> ConnFile {
+    // The 1-based range of side e of block b, from its first node to its last.
+    let range = |(b, e): Side| -> Range {
+        let [ni, nj] = dims[b];
+        let (from, to) = match e {
+            Edge::E1 => ([1, 1, 1], [1, nj, 1]),
+            Edge::E2 => ([ni, 1, 1], [ni, nj, 1]),
+            Edge::E3 => ([1, 1, 1], [ni, 1, 1]),
+            Edge::E4 => ([1, nj, 1], [ni, nj, 1]),
+        };
+        (b + 1, from, to)
+    };
+    let mut out = ConnFile::default();
+    let mut paired = std::collections::HashSet::new();
+    for m in matches {
+        let b = range(m.b);
+        let b = if m.reversed { (b.0, b.2, b.1) } else { b };
+        out.interfaces.push([range(m.a), b]);
+        paired.insert(m.a);
+        paired.insert(m.b);
+    }
+    let mut families: Vec<String> = Vec::new();
+    for (b, _) in dims.iter().enumerate() {
+        for e in Edge::ALL {
+            if paired.contains(&(b, e)) {
+                continue;
+            }
+            let name = &family[b];
+            let id = match families.iter().position(|f| f == name) {
+                Some(k) => k + 1,
+                None => {
+                    families.push(name.clone());
+                    families.len()
+                }
+            };
+            out.patches.push((range((b, e)), id));
+        }
+    }
+    out.families = families
+        .into_iter()
+        .enumerate()
+        .map(|(k, f)| (k + 1, f))
+        .collect();
     out
 }
 

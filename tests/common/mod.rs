@@ -93,3 +93,33 @@ pub fn grid_area(g: &Grid2<3>) -> f64 {
     }
     a
 }
+
+/// OpenFOAM's aspect ratio of a planar grid's cells, as `checkMesh` computes it on the extruded
+/// mesh: per cell the larger over the smaller of the summed magnitudes of its faces' area
+/// components in x and y, i.e. of Σ|Δy| and Σ|Δx| over the cell's four sides (the ratio of its
+/// Cartesian extents: a thin cell counts in full only where it lies along x or y). The largest
+/// over the grid, and its cell (i, j).
+pub fn foam_aspect_ratio_max(g: &ellipgrid::Grid2<2>) -> (f64, usize, usize) {
+    let mut worst = (0.0, 0, 0);
+    for j in 0..g.nj() - 1 {
+        for i in 0..g.ni() - 1 {
+            let c = [
+                g.point(i, j),
+                g.point(i + 1, j),
+                g.point(i + 1, j + 1),
+                g.point(i, j + 1),
+            ];
+            let (mut sx, mut sy) = (0.0, 0.0);
+            for (k, p) in c.iter().enumerate() {
+                let q = c[(k + 1) % 4];
+                sx += (q[1] - p[1]).abs();
+                sy += (q[0] - p[0]).abs();
+            }
+            let r = sx.max(sy) / sx.min(sy);
+            if r > worst.0 {
+                worst = (r, i, j);
+            }
+        }
+    }
+    worst
+}

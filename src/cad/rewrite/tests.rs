@@ -73,3 +73,14 @@ fn references_in_strings_are_not_counted() {
     let n = reference_counts(t, &ids);
     assert_eq!((n[&1], n[&2], n[&3]), (2, 2, 0));
 }
+
+#[test]
+fn empty_lists_become_unset_and_entities_without_attributes_stay() {
+    let t = "#1 = (\n  LENGTH_UNIT()\n  NAMED_UNIT(*)\n  SI_UNIT($, .METRE.)\n);\n\
+        #2 = PRODUCT('p', 'NONE', $, ());\n#3 = X(( ), 'a(),()', (#1, ()));\n";
+    let r = empty_lists(t);
+    assert!(r.contains("LENGTH_UNIT()"), "{r}");
+    assert!(r.contains("#2 = PRODUCT('p', 'NONE', $, $);"), "{r}");
+    assert!(r.contains("#3 = X($, 'a(),()', (#1, $));"), "{r}");
+    assert!(matches!(empty_lists("#1 = A(1, (2));"), Cow::Borrowed(_)));
+}
