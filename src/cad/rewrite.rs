@@ -16,7 +16,7 @@
 //! - [`empty_lists`]: an empty list given as an attribute becomes `$` (zoo.dev writes
 //!   `PRODUCT(…, ())`, at which truck-stepio's tokenizer refuses the whole file).
 
-use super::prescan::{references, statements, top_level_args};
+use super::prescan::{code_bytes, references, statements, top_level_args};
 use std::borrow::Cow;
 use std::collections::HashMap;
 
@@ -386,31 +386,24 @@ pub(super) fn empty_lists(text: &str) -> Cow<'_, str> {
     for st in statements(text) {
         let body = &text[st.body..st.end];
         let b = body.as_bytes();
-        let mut in_str = false;
-        // The last byte outside strings and whitespace, before position i.
-        let mut last = 0u8;
-        for (i, &c) in b.iter().enumerate() {
-            if in_str {
-                in_str = c != b'\'';
-                if !in_str {
-                    last = c;
-                }
-                continue;
+        // The last byte outside strings and whitespace before the current one, `'` after a
+        // string (code_bytes skips strings: a gap in the positions is one).
+        let (mut last, mut next) = (0u8, 0usize);
+        for (i, c) in code_bytes(body) {
+            if i != next {
+                last = b'\'';
             }
-            match c {
-                b'\'' => in_str = true,
-                b'(' if matches!(last, b',' | b'(') => {
-                    let close = i
-                        + 1
-                        + b[i + 1..]
-                            .iter()
-                            .take_while(|d| d.is_ascii_whitespace())
-                            .count();
-                    if b.get(close) == Some(&b')') {
-                        edits.push((st.body + i, st.body + close + 1, "$".to_string()));
-                    }
+            next = i + 1;
+            if c == b'(' && matches!(last, b',' | b'(') {
+                let close = i
+                    + 1
+                    + b[i + 1..]
+                        .iter()
+                        .take_while(|d| d.is_ascii_whitespace())
+                        .count();
+                if b.get(close) == Some(&b')') {
+                    edits.push((st.body + i, st.body + close + 1, "$".to_string()));
                 }
-                _ => {}
             }
             if !c.is_ascii_whitespace() {
                 last = c;

@@ -84,3 +84,14 @@ fn empty_lists_become_unset_and_entities_without_attributes_stay() {
     assert!(r.contains("#3 = X($, 'a(),()', (#1, $));"), "{r}");
     assert!(matches!(empty_lists("#1 = A(1, (2));"), Cow::Borrowed(_)));
 }
+
+#[test]
+fn empty_lists_in_and_after_strings_stay() {
+    // `()` inside a string, after a string and after a doubled quote are no attributes
+    let t = "#1 = A('(),()', 'it''s', ());\n#2 = B('x'(), (''), 'a''(', ());\n";
+    let r = empty_lists(t);
+    assert_eq!(
+        r,
+        "#1 = A('(),()', 'it''s', $);\n#2 = B('x'(), (''), 'a''(', $);\n"
+    );
+}
