@@ -4,7 +4,7 @@
 //! to the exact area at second order (error ratio ≈ 4 per halving), no folds.
 
 mod common;
-use common::{ellipgrid, root, text};
+use common::{ellipgrid, grid_area as area, grid_node as node, root, text};
 use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Grid2;
@@ -23,31 +23,6 @@ fn grid(name: &str, k: usize, n: usize) -> FaceGrid {
     let d = DistributionSpec::Uniform {};
     grid_face(&faces[k - 1], (n, n), &d, &d, &mut DirectLu::new(), name)
         .unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn node(g: &Grid2<3>, p: usize) -> [f64; 3] {
-    [g.coord(0)[p], g.coord(1)[p], g.coord(2)[p]]
-}
-
-/// Σ ½ |d₁ × d₂| over the cells (exact for planar quads).
-fn area(g: &Grid2<3>) -> f64 {
-    let (ni, nj) = (g.ni(), g.nj());
-    let mut a = 0.0;
-    for j in 0..nj - 1 {
-        for i in 0..ni - 1 {
-            let p = |ii: usize, jj: usize| node(g, ii + ni * jj);
-            let (x0, x1, x2, x3) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
-            let d1 = [x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]];
-            let d2 = [x3[0] - x1[0], x3[1] - x1[1], x3[2] - x1[2]];
-            let c = [
-                d1[1] * d2[2] - d1[2] * d2[1],
-                d1[2] * d2[0] - d1[0] * d2[2],
-                d1[0] * d2[1] - d1[1] * d2[0],
-            ];
-            a += 0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-        }
-    }
-    a
 }
 
 fn unfolded(g: &Grid2<3>) -> bool {

@@ -266,13 +266,16 @@ fn boundary(
     let (c, angles) = lp.corners(min_turn);
     let scale = lp.metric_scale();
     let forward = (lp.signed_area(scale) > 0.0) == orientation;
+    // A pole (corners c[0] = c[3]) is the side E1 either way round.
+    let back = if lp.pole.is_some() {
+        [0, 2, 1, 3]
+    } else {
+        [0, 3, 2, 1]
+    };
     let (q, angles) = if forward {
         (c, angles)
     } else {
-        (
-            [c[0], c[3], c[2], c[1]],
-            [angles[0], angles[3], angles[2], angles[1]],
-        )
+        (back.map(|k| c[k]), back.map(|k| angles[k]))
     };
     // The loop from a to b in the traversal direction, at arclength fractions f.
     let path = |lp: &mut FaceLoop, a: LoopPoint, b: LoopPoint, f: &[f64]| {
@@ -301,6 +304,9 @@ fn boundary(
     let mut points: [Vec<Vec3>; 4] = Default::default();
     let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
     for (e, (a, b, reversed, n, d)) in Edge::ALL.into_iter().zip(spec) {
+        if e == Edge::E1 && lp.pole.is_some() {
+            continue;
+        }
         let at = format!("{place}, edge {e}");
         let coarse = d.sample(n, length(&lp, a, b), &at)?;
         let mut sigma: Vec<f64> = coarse
@@ -316,6 +322,9 @@ fn boundary(
         let (x, w) = path(&mut lp, a, b, &f).map_err(|m| Error::input(&at, m))?;
         points[e.index()] = x;
         uv[e.index()] = w;
+    }
+    if lp.pole.is_some() {
+        pole_side(&mut points, &mut uv, lp.tol(), place)?;
     }
     // Each corner ends two block edges, sampled on two CAD edges that meet there only to the
     // file's tolerance: one point and one (u, v) for both (their mean).
@@ -349,6 +358,13 @@ fn boundary(
         (points[a][ka], points[b][kb]) = (x, x);
         (uv[a][ka], uv[b][kb]) = (w, w);
     }
+    if lp.pole.is_some() {
+        // the pole's corners stay the pole: one point
+        let p = points[Edge::E1.index()][1];
+        points[Edge::E1.index()][0] = p;
+        points[Edge::E3.index()][0] = p;
+        points[Edge::E4.index()][0] = p;
+    }
     Ok(FaceBoundary {
         points,
         uv,
@@ -356,4 +372,44 @@ fn boundary(
         angles,
         gap: lp.gap,
     })
+}
+
+/// The side E1 of a face whose loop runs through a pole, given E2..E4: every node the pole
+/// (the mean of the ends of E3 and E4 there, which must meet), its (u, v) along the straight
+/// segment from E3's first (u, v) to E4's first at the fractions of E2's arclength at its
+/// nodes, as a collapsed side of a patch takes its opposite side's parameters
+/// ([`super::grid_patch`]): the grid lines leave the pole towards E2's nodes.
+fn pole_side(
+    points: &mut [Vec<Vec3>; 4],
+    uv: &mut [Vec<[f64; 2]>; 4],
+    tol: f64,
+    place: &str,
+) -> Result<()> {
+    let (e2, e3, e4) = (Edge::E2.index(), Edge::E3.index(), Edge::E4.index());
+    let miss = (points[e3][0] - points[e4][0]).norm();
+    if miss > tol {
+        return Err(Error::input(
+            place,
+            format!("the block edges E3 and E4 do not meet at the pole ({miss:.3e} apart)"),
+        ));
+    }
+    let p = 0.5 * (points[e3][0] + points[e4][0]);
+    let mut s = vec![0.0];
+    for w in points[e2].windows(2) {
+        s.push(s[s.len() - 1] + (w[1] - w[0]).norm());
+    }
+    let total = s[s.len() - 1];
+    let (a, b) = (uv[e3][0], uv[e4][0]);
+    let e1 = Edge::E1.index();
+    points[e1] = vec![p; s.len()];
+    uv[e1] = s
+        .iter()
+        .map(|t| {
+            let f = if total > 0.0 { t / total } else { 0.0 };
+            [0, 1].map(|c| a[c] + f * (b[c] - a[c]))
+        })
+        .collect();
+    let last = s.len() - 1;
+    (uv[e1][0], uv[e1][last]) = (a, b);
+    Ok(())
 }

@@ -41,8 +41,13 @@
 //! side's nodes ([`grid_patch`]). A surface with no area (one point, or a curve: OpenVSP writes
 //! such degenerate patches at wing roots and tips) is refused.
 //!
-//! Faces without a boundary, whose one loop winds around the surface (a cap around a pole),
-//! or that cannot be split into blocks are refused with the reason.
+//! A one-loop face whose loop runs through a pole of its surface (a cone's apex, a sphere's
+//! pole: the loop's (u, v) jump there) has the pole as its side E1, one point, its (u, v)
+//! along the pole at the fractions of the opposite side's arclength, as a patch's collapsed
+//! side (`trim/pole`, [`grid_face`]).
+//!
+//! Faces without a boundary, whose one loop winds around the surface (a cap around a pole) or
+//! runs through two poles, or that cannot be split into blocks are refused with the reason.
 //!
 //! Limits of truck-stepio 0.3 that show here: faces whose surface or edges it cannot convert
 //! are skipped (it prints a line to stderr) and so get no number; its writer prints numbers

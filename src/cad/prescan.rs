@@ -92,38 +92,40 @@ fn check_memory(len: usize) -> Result<(), String> {
 /// statements (entity instances end with `;` outside parentheses) and at most
 /// [`MAX_LIST_ITEMS`] items in any one list.
 fn check_structure(text: &str) -> Result<(), String> {
-    let (mut depth, mut line, mut in_str) = (0usize, 1usize, false);
+    let mut depth = 0usize;
     let mut statements = 0usize;
     // items so far of the list open at each depth
     let mut items = [0usize; MAX_DEPTH + 1];
-    for c in text.chars() {
+    // the line of byte `i`, for the messages
+    let line = |i: usize| 1 + text[..i].bytes().filter(|&c| c == b'\n').count();
+    for (i, c) in code_bytes(text) {
         match c {
-            '\'' => in_str = !in_str,
-            '\n' => line += 1,
-            _ if in_str => {}
-            '(' => {
+            b'(' => {
                 depth += 1;
                 if depth > MAX_DEPTH {
                     return Err(format!(
-                        "line {line}: parentheses nested deeper than {MAX_DEPTH}"
+                        "line {}: parentheses nested deeper than {MAX_DEPTH}",
+                        line(i)
                     ));
                 }
                 items[depth] = 1;
             }
-            ')' => depth = depth.saturating_sub(1),
-            ',' if depth > 0 => {
+            b')' => depth = depth.saturating_sub(1),
+            b',' if depth > 0 => {
                 items[depth] += 1;
                 if items[depth] > MAX_LIST_ITEMS {
                     return Err(format!(
-                        "line {line}: a list of more than {MAX_LIST_ITEMS} items"
+                        "line {}: a list of more than {MAX_LIST_ITEMS} items",
+                        line(i)
                     ));
                 }
             }
-            ';' if depth == 0 => {
+            b';' if depth == 0 => {
                 statements += 1;
                 if statements > MAX_ENTITIES {
                     return Err(format!(
-                        "line {line}: more than {MAX_ENTITIES} entity instances"
+                        "line {}: more than {MAX_ENTITIES} entity instances",
+                        line(i)
                     ));
                 }
             }
@@ -134,39 +136,14 @@ fn check_structure(text: &str) -> Result<(), String> {
 }
 
 /// The entity instances (`#id = …;`) and the references (`#n`) in each, outside strings,
-/// as ids and a flat list of references per instance.
+/// as ids and a flat list of references per instance; an instance the text ends inside
+/// (no closing `;`) counts too, up to the end of the text.
 fn instances(text: &str) -> (Vec<u64>, Vec<usize>, Vec<u64>) {
-    let b = text.as_bytes();
     let (mut ids, mut starts, mut refs) = (Vec::new(), Vec::new(), Vec::new());
-    let (mut i, mut depth, mut in_str, mut inside) = (0usize, 0usize, false, false);
-    while i < b.len() {
-        let c = b[i];
-        i += 1;
-        if in_str {
-            in_str = c != b'\'';
-            continue;
-        }
-        match c {
-            b'\'' => in_str = true,
-            b'(' => depth += 1,
-            b')' => depth = depth.saturating_sub(1),
-            b';' if depth == 0 => inside = false,
-            b'#' => {
-                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
-                let Ok(n) = text[i..end].parse::<u64>() else {
-                    continue;
-                };
-                i = end;
-                if inside {
-                    refs.push(n);
-                } else if depth == 0 && text[end..].trim_start().starts_with('=') {
-                    ids.push(n);
-                    starts.push(refs.len());
-                    inside = true;
-                }
-            }
-            _ => {}
-        }
+    for (st, _) in scan(text) {
+        ids.push(st.id);
+        starts.push(refs.len());
+        refs.extend(references(&text[st.body..st.end]).map(|r| r.id));
     }
     starts.push(refs.len());
     (ids, starts, refs)
@@ -246,69 +223,117 @@ pub(super) struct Statement {
 }
 
 /// The entity instances of a STEP text in order (an `#id =` outside strings at nesting depth
-/// 0 opens one, the next `;` at depth 0 closes it); the one scanner of the rewrites and of
-/// the unit reader.
-pub(super) fn statements(text: &str) -> Vec<Statement> {
-    let b = text.as_bytes();
-    let mut out = Vec::new();
-    let (mut i, mut depth, mut in_str) = (0usize, 0usize, false);
+/// 0 opens one, the next `;` at depth 0 closes it); the one scanner of the rewrites, the
+/// unit reader and the reference check.
+pub(super) fn statements(text: &str) -> impl Iterator<Item = Statement> + '_ {
+    scan(text).filter_map(|(st, closed)| closed.then_some(st))
+}
+
+/// [`statements`], and last an instance the text ends inside (no closing `;` at depth 0,
+/// `end` at the end of the text), each with whether it was closed.
+fn scan(text: &str) -> impl Iterator<Item = (Statement, bool)> + '_ {
+    let mut depth = 0usize;
     let mut open: Option<(u64, usize, usize)> = None;
-    while i < b.len() {
-        let c = b[i];
-        i += 1;
-        if in_str {
-            in_str = c != b'\'';
-            continue;
-        }
-        match c {
-            b'\'' => in_str = true,
-            b'(' => depth += 1,
-            b')' => depth = depth.saturating_sub(1),
-            b';' if depth == 0 => {
-                if let Some((id, start, body)) = open.take() {
-                    out.push(Statement {
-                        id,
-                        start,
-                        body,
-                        end: i,
-                    });
+    code_bytes(text)
+        .map(Some)
+        .chain([None])
+        .filter_map(move |token| {
+            let Some((i, c)) = token else {
+                return close(&mut open, text.len(), false);
+            };
+            match c {
+                b'(' => depth += 1,
+                b')' => depth = depth.saturating_sub(1),
+                b';' if depth == 0 => return close(&mut open, i + 1, true),
+                b'#' if depth == 0 && open.is_none() => {
+                    let (id, end) = number_after_hash(text, i)?;
+                    let rest = text[end..].trim_start().strip_prefix('=')?;
+                    open = Some((id, i, text.len() - rest.len()));
                 }
+                _ => {}
             }
-            b'#' if depth == 0 && open.is_none() => {
-                let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
-                if let Ok(id) = text[i..end].parse::<u64>() {
-                    if let Some(rest) = text[end..].trim_start().strip_prefix('=') {
-                        open = Some((id, i - 1, text.len() - rest.len()));
-                    }
-                }
-                i = end;
-            }
-            _ => {}
+            None
+        })
+}
+
+/// The statement `open` (id, start, body) ended at `end`, if one is open, and whether a `;`
+/// closed it.
+fn close(
+    open: &mut Option<(u64, usize, usize)>,
+    end: usize,
+    closed: bool,
+) -> Option<(Statement, bool)> {
+    let (id, start, body) = open.take()?;
+    Some((
+        Statement {
+            id,
+            start,
+            body,
+            end,
+        },
+        closed,
+    ))
+}
+
+/// A reference `#n` in a STEP text: its number and the byte after its digits.
+pub(super) struct Reference {
+    pub id: u64,
+    pub end: usize,
+}
+
+/// Every `#n` of a STEP text outside strings, in order. Over a statement's body these are its
+/// references; over a whole file the `#id` that open the statements are among them.
+pub(super) fn references(text: &str) -> impl Iterator<Item = Reference> + '_ {
+    code_bytes(text)
+        .filter(|&(_, c)| c == b'#')
+        .filter_map(|(at, _)| {
+            let (id, end) = number_after_hash(text, at)?;
+            Some(Reference { id, end })
+        })
+}
+
+/// The number written after the `#` at byte `at`, and the byte after its digits.
+fn number_after_hash(text: &str, at: usize) -> Option<(u64, usize)> {
+    let digits = &text[at + 1..];
+    let end = at + 1 + digits.bytes().take_while(u8::is_ascii_digit).count();
+    Some((text[at + 1..end].parse().ok()?, end))
+}
+
+/// The bytes of a STEP text outside its strings, with their positions: the one place that
+/// says what a string is. A `'` opens a string and the next `'` closes it; ISO 10303-21
+/// writes a quote inside a string as `''`, which closes the string and at once opens it
+/// again, so it needs no rule of its own. The quotes themselves are not yielded.
+pub(super) fn code_bytes(text: &str) -> impl Iterator<Item = (usize, u8)> + '_ {
+    let mut in_str = false;
+    text.bytes().enumerate().filter(move |&(_, c)| {
+        if c == b'\'' {
+            in_str = !in_str;
+            false
+        } else {
+            !in_str
         }
-    }
-    out
+    })
 }
 
 /// The top-level arguments of the list that starts at `s` (with its `(`), as text.
 pub(super) fn top_level_args(s: &str) -> Vec<&str> {
-    let (mut depth, mut in_str, mut start) = (0usize, false, 1usize);
+    let (mut depth, mut start) = (0usize, 1usize);
     let mut out = Vec::new();
-    for (i, c) in s.char_indices() {
+    for (i, c) in code_bytes(s) {
         match c {
-            '\'' => in_str = !in_str,
-            '(' if !in_str => depth += 1,
-            ')' if !in_str => {
+            b'(' => depth += 1,
+            b')' => {
                 depth -= 1;
                 if depth == 0 {
                     out.push(s[start..i].trim());
                     return out;
                 }
             }
-            ',' if !in_str && depth == 1 => {
+            b',' if depth == 1 => {
                 out.push(s[start..i].trim());
                 start = i + 1;
             }
-            ';' if !in_str => break,
+            b';' => break,
             _ => {}
         }
     }
@@ -353,6 +378,44 @@ fn entity_id(text: &str, at: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn strings_hide_references_semicolons_and_parentheses_and_doubled_quotes_stay_inside() {
+        // `''` is a quote inside a string: `'it''s #13; ('` is one string, `'''#14'''` the
+        // string `'#14'`, `''''` the string `'`
+        let t = "#1 = A('#12', #2, 'it''s #13; (', (#3, '''#14'''));\n\
+            #2 = B('', #1, '''');\n#3=C(';');\n";
+        let st: Vec<(u64, &str)> = statements(t).map(|s| (s.id, &t[s.start..s.end])).collect();
+        assert_eq!(
+            st,
+            [
+                (1, "#1 = A('#12', #2, 'it''s #13; (', (#3, '''#14'''));"),
+                (2, "#2 = B('', #1, '''');"),
+                (3, "#3=C(';');"),
+            ]
+        );
+        assert_eq!(t[statements(t).next().unwrap().body..].find('A'), Some(1));
+        let refs: Vec<u64> = references(t).map(|r| r.id).collect();
+        assert_eq!(refs, [1, 2, 3, 2, 1, 3]);
+        assert_eq!(
+            top_level_args(&t[t.find('(').unwrap()..]),
+            ["'#12'", "#2", "'it''s #13; ('", "(#3, '''#14''')"]
+        );
+        let (ids, starts, flat) = instances(t);
+        assert_eq!(
+            (ids, starts, flat),
+            (vec![1, 2, 3], vec![0, 2, 3, 3], vec![2, 3, 1])
+        );
+        let e = check(t).unwrap_err();
+        assert!(e.contains("cycle: #1 → #2 → #1"), "{e}");
+        // a statement the text ends inside still counts for the cycle check
+        let e = check("#5 = A((#5);").unwrap_err();
+        assert!(e.contains("cycle: #5 → #5"), "{e}");
+        assert_eq!(statements("#5 = A((#5);").count(), 0);
+        // a line number counts the lines inside strings too
+        let deep = format!("#1 = A('\n\n', {}{});", "(".repeat(100), ")".repeat(100));
+        assert!(check(&deep).unwrap_err().starts_with("line 3:"));
+    }
 
     const SURF: &str = "#33 = B_SPLINE_SURFACE_WITH_KNOTS('', 3, 3, ((#34, #35), (#36, #37)), \
         .UNSPECIFIED., .U., .U., .U., (4, 4), (4, 4), (0.0, 1.0), (0.0, 1.0), .UNSPECIFIED.);\n";

@@ -16,7 +16,7 @@
 //! - [`empty_lists`]: an empty list given as an attribute becomes `$` (zoo.dev writes
 //!   `PRODUCT(…, ())`, at which truck-stepio's tokenizer refuses the whole file).
 
-use super::prescan::{statements, top_level_args};
+use super::prescan::{code_bytes, references, statements, top_level_args};
 use std::borrow::Cow;
 use std::collections::HashMap;
 
@@ -114,13 +114,14 @@ pub(super) struct Instance<'a> {
     /// where `#id` starts
     start: usize,
     pub open: usize,
+    /// the byte after the `;` that closes the instance
+    end: usize,
 }
 
 /// The simple entity instances of a STEP text whose type is one of `names` (complex
 /// instances `#id = (A(…) B(…))` are left out).
 pub(super) fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> {
     statements(text)
-        .into_iter()
         .filter_map(|st| {
             let rest = text[st.body..st.end].trim_start();
             let len = rest
@@ -134,6 +135,7 @@ pub(super) fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> 
                 name,
                 start: st.start,
                 open: offset(text, after),
+                end: st.end,
             })
         })
         .collect()
@@ -141,46 +143,15 @@ pub(super) fn instances<'a>(text: &'a str, names: &[&str]) -> Vec<Instance<'a>> 
 
 /// How often each id of `ids` is referred to (`#n` outside strings and not defining `#n`).
 fn reference_counts<V>(text: &str, ids: &HashMap<u64, V>) -> HashMap<u64, usize> {
-    let b = text.as_bytes();
     let mut out: HashMap<u64, usize> = ids.keys().map(|&k| (k, 0)).collect();
-    let (mut i, mut in_str) = (0usize, false);
-    while i < b.len() {
-        let c = b[i];
-        i += 1;
-        if in_str {
-            in_str = c != b'\'';
-            continue;
-        }
-        if c == b'\'' {
-            in_str = true;
-        } else if c == b'#' {
-            let end = i + b[i..].iter().take_while(|d| d.is_ascii_digit()).count();
-            if let Ok(n) = text[i..end].parse::<u64>() {
-                if !text[end..].trim_start().starts_with('=') {
-                    if let Some(k) = out.get_mut(&n) {
-                        *k += 1;
-                    }
-                }
+    for r in references(text) {
+        if !text[r.end..].trim_start().starts_with('=') {
+            if let Some(k) = out.get_mut(&r.id) {
+                *k += 1;
             }
-            i = end;
         }
     }
     out
-}
-
-/// The byte after the `;` that ends the instance whose argument list opens at `open`.
-fn statement_end(text: &str, open: usize) -> Option<usize> {
-    let (mut depth, mut in_str) = (0usize, false);
-    for (k, c) in text[open..].char_indices() {
-        match c {
-            '\'' => in_str = !in_str,
-            '(' if !in_str => depth += 1,
-            ')' if !in_str => depth = depth.checked_sub(1)?,
-            ';' if !in_str && depth == 0 => return Some(open + k + 1),
-            _ => {}
-        }
-    }
-    None
 }
 
 /// Byte offset of `arg` (a slice of `text`) in `text`.
@@ -330,10 +301,7 @@ pub(super) fn untrim_curves(text: &str) -> Cow<'_, str> {
         .collect();
     while let Some(id) = gone.pop() {
         let Some(e) = trimmed.get(&id) else { continue };
-        let Some(end) = statement_end(text, e.open) else {
-            continue;
-        };
-        edits.push((e.start, end, String::new()));
+        edits.push((e.start, e.end, String::new()));
         // a trimmed curve of a trimmed curve: its basis loses a reference
         if let Some(n) = basis.get(&id).and_then(|(b, _)| left.get_mut(b)) {
             *n = n.saturating_sub(1);
@@ -418,31 +386,24 @@ pub(super) fn empty_lists(text: &str) -> Cow<'_, str> {
     for st in statements(text) {
         let body = &text[st.body..st.end];
         let b = body.as_bytes();
-        let mut in_str = false;
-        // The last byte outside strings and whitespace, before position i.
-        let mut last = 0u8;
-        for (i, &c) in b.iter().enumerate() {
-            if in_str {
-                in_str = c != b'\'';
-                if !in_str {
-                    last = c;
-                }
-                continue;
+        // The last byte outside strings and whitespace before the current one, `'` after a
+        // string (code_bytes skips strings: a gap in the positions is one).
+        let (mut last, mut next) = (0u8, 0usize);
+        for (i, c) in code_bytes(body) {
+            if i != next {
+                last = b'\'';
             }
-            match c {
-                b'\'' => in_str = true,
-                b'(' if matches!(last, b',' | b'(') => {
-                    let close = i
-                        + 1
-                        + b[i + 1..]
-                            .iter()
-                            .take_while(|d| d.is_ascii_whitespace())
-                            .count();
-                    if b.get(close) == Some(&b')') {
-                        edits.push((st.body + i, st.body + close + 1, "$".to_string()));
-                    }
+            next = i + 1;
+            if c == b'(' && matches!(last, b',' | b'(') {
+                let close = i
+                    + 1
+                    + b[i + 1..]
+                        .iter()
+                        .take_while(|d| d.is_ascii_whitespace())
+                        .count();
+                if b.get(close) == Some(&b')') {
+                    edits.push((st.body + i, st.body + close + 1, "$".to_string()));
                 }
-                _ => {}
             }
             if !c.is_ascii_whitespace() {
                 last = c;

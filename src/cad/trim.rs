@@ -8,19 +8,26 @@ use super::LoopEdge;
 use ellipgrid_geometry::{
     project_within, ArclengthMap, Curve, Surface, TruckCurve, TruckSurface, Vec3,
 };
+use pole::singular;
 use truck_geometry::prelude::{ParametricSurface, Point3, SearchNearestParameter, D2};
 use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
+
+mod pole;
 
 /// A CAD surface in its own parameters.
 pub(super) type CadSurface = TruckSurface<StepSurface>;
 
 /// Samples per edge of the loop polygon in (u, v) (hints, orientation, closure).
 pub(super) const NS: usize = 32;
-/// An edge shorter than this fraction of the loop is degenerate (a pole or collapsed side).
+/// An edge shorter than this fraction of the loop is degenerate (a point: left out of the
+/// loop; where it sits on a pole, the pole is found as at any vertex).
 const DEGENERATE: f64 = 1e-9;
 
 /// One oriented edge of the loop with its arclength table and its (u, v) samples.
 pub(super) struct LoopCurve {
+    /// The edge's number in the loop as the file gives it (1-based, zero-length edges
+    /// counted), for messages.
+    number: usize,
     curve: TruckCurve<Curve3D>,
     map: ArclengthMap,
     /// (u, v) at the normalized arclengths k / NS, k = 0..=NS.
@@ -48,6 +55,10 @@ pub(super) struct FaceLoop<'a> {
     scale: [f64; 2],
     /// (u, v) at the loop's end less at its start, if the loop winds around the surface.
     pub winding: Option<[f64; 2]>,
+    /// The vertex (the start of this edge) where the loop runs through a pole of the
+    /// surface's parametrization: there the loop's (u, v) jumps along the pole, which is a
+    /// side of the face of zero length (a cone's apex, a sphere's pole).
+    pub pole: Option<usize>,
 }
 
 /// Shifts periodic parameters of `uv` by whole periods to lie nearest `near`.
@@ -91,14 +102,14 @@ impl<'a> FaceLoop<'a> {
             curves.push((curve, map));
         }
         let total: f64 = curves.iter().map(|c| c.1.length()).sum();
-        if let Some(n) = curves
-            .iter()
-            .position(|c| c.1.length() <= DEGENERATE * total)
-        {
-            return Err(format!(
-                "boundary edge {} has zero length (a pole or collapsed side: not supported yet)",
-                n + 1
-            ));
+        let (numbers, curves): (Vec<usize>, Vec<_>) = curves
+            .into_iter()
+            .enumerate()
+            .filter(|(_, c)| c.1.length() > DEGENERATE * total)
+            .map(|(k, c)| (k + 1, c))
+            .unzip();
+        if curves.is_empty() {
+            return Err("the boundary loop has no length".into());
         }
         let pts: Vec<Vec<Vec3>> = curves
             .iter()
@@ -122,6 +133,7 @@ impl<'a> FaceLoop<'a> {
             tol: (tol_rel * size).max(tol_abs),
             scale: [1.0; 2],
             winding: None,
+            pole: None,
         };
         let n = curves.len();
         for k in 0..n {
@@ -130,21 +142,44 @@ impl<'a> FaceLoop<'a> {
             if miss > lp.tol {
                 return Err(format!(
                     "boundary edges {} and {} do not meet (gap {miss:.3e})",
-                    k + 1,
-                    (k + 1) % n + 1
+                    numbers[k],
+                    numbers[(k + 1) % n]
                 ));
             }
         }
-        let mut prev = lp.initial_uv(pts[0][0])?;
-        let first = prev;
-        for (k, ((curve, map), p)) in curves.into_iter().zip(&pts).enumerate() {
-            let mut uv = Vec::with_capacity(NS + 1);
-            for x in p {
-                let q = lp.project(*x, prev, k)?;
-                uv.push(q);
-                prev = q;
+        let mut uv = lp.project_loop(&pts, &numbers, 0)?;
+        // A pole at a vertex: the loop's (u, v) is continuous everywhere else, so it is
+        // projected again starting there (a period in a periodic parameter is then taken up by
+        // the pole), and the (u, v) of its two ends are the limits along their edges.
+        if !winding {
+            let poles: Vec<usize> = (0..n).filter(|&k| lp.is_pole(&uv, k)).collect();
+            if poles.len() > 1 {
+                let at: Vec<String> = poles.iter().map(|&k| numbers[k].to_string()).collect();
+                return Err(format!(
+                    "the boundary loop runs through {} poles of the surface (at the starts of \
+                     edges {}): not one block face",
+                    poles.len(),
+                    at.join(", ")
+                ));
             }
-            lp.edges.push(LoopCurve { curve, map, uv });
+            if let Some(&k) = poles.first() {
+                uv = lp.project_loop(&pts, &numbers, k)?;
+                lp.pole = lp
+                    .pole_ends(&mut uv, k, pts[k][0], size)
+                    .map_err(|e| format!("boundary edge {}: {e}", numbers[k]))?;
+            }
+        }
+        let (first, prev) = match lp.pole {
+            Some(k) => (uv[k][0], uv[(k + n - 1) % n][NS]),
+            None => (uv[0][0], uv[n - 1][NS]),
+        };
+        for (((curve, map), uv), number) in curves.into_iter().zip(uv).zip(numbers) {
+            lp.edges.push(LoopCurve {
+                number,
+                curve,
+                map,
+                uv,
+            });
         }
         lp.scale = lp.mean_speeds();
         // Closure: back at the start in (u, v), not a period away (unless `winding`).
@@ -152,7 +187,7 @@ impl<'a> FaceLoop<'a> {
         let miss = (0..2)
             .map(|c| ((prev[c] - first[c]) * scale[c]).abs())
             .fold(0.0, f64::max);
-        if miss > 1e-3 * size.max(f64::MIN_POSITIVE) {
+        if miss > 1e-3 * size.max(f64::MIN_POSITIVE) && lp.pole.is_none() {
             lp.winding = Some([0, 1].map(|c| prev[c] - first[c]));
         }
         if lp.winding.is_some() && !winding {
@@ -163,6 +198,28 @@ impl<'a> FaceLoop<'a> {
             );
         }
         Ok(lp)
+    }
+
+    /// (u, v) of the samples `pts` of every edge, each from the one before, going round the
+    /// loop from the start of edge `start`.
+    fn project_loop(
+        &mut self,
+        pts: &[Vec<Vec3>],
+        numbers: &[usize],
+        start: usize,
+    ) -> Result<Vec<Vec<[f64; 2]>>, String> {
+        let n = pts.len();
+        let mut out = vec![Vec::new(); n];
+        let mut prev = self.initial_uv(pts[start][0])?;
+        for k in (start..n).chain(0..start) {
+            out[k] = Vec::with_capacity(NS + 1);
+            for x in &pts[k] {
+                let q = self.project(*x, prev, numbers[k])?;
+                out[k].push(q);
+                prev = q;
+            }
+        }
+        Ok(out)
     }
 
     /// (u, v) of a first boundary point without a nearby start: truck's search, else a
@@ -212,21 +269,35 @@ impl<'a> FaceLoop<'a> {
         Some(b)
     }
 
-    /// (u, v) of boundary point `x` of edge `k` by Newton from `near`, continued across seams.
-    fn project(&mut self, x: Vec3, near: [f64; 2], k: usize) -> Result<[f64; 2], String> {
-        let (u, v) =
-            project_within(self.surface, x, (near[0], near[1]), self.bounds).ok_or_else(|| {
-                format!(
-                    "boundary edge {}: the projection onto the surface did not converge",
-                    k + 1
-                )
-            })?;
-        let uv = unwrap([u, v], near, self.periods);
-        let gap = (self.surface.point(uv[0], uv[1]) - x).norm();
+    /// (u, v) of boundary point `x` of edge `number` (1-based, for messages) by Newton from
+    /// `near`, continued across seams. From a pole Newton cannot turn towards `x` (a
+    /// parameter there moves no point): if it misses from one, it starts afresh.
+    fn project(&mut self, x: Vec3, near: [f64; 2], number: usize) -> Result<[f64; 2], String> {
+        let newton = |from: [f64; 2]| {
+            project_within(self.surface, x, (from[0], from[1]), self.bounds)
+                .map(|(u, v)| unwrap([u, v], near, self.periods))
+        };
+        let off = |q: [f64; 2]| (self.surface.point(q[0], q[1]) - x).norm();
+        let pole = singular(self.surface, near).is_some();
+        // at a pole already (Newton there may move along the pole, a parameter it cannot see)
+        let mut found = if pole && off(near) <= 1e-9 * self.tol {
+            Some(near)
+        } else {
+            newton(near)
+        };
+        if pole && !found.is_some_and(|q| off(q) <= self.tol) {
+            found = self
+                .initial_uv(x)
+                .ok()
+                .and_then(|q| newton(unwrap(q, near, self.periods)));
+        }
+        let uv = found.ok_or_else(|| {
+            format!("boundary edge {number}: the projection onto the surface did not converge")
+        })?;
+        let gap = off(uv);
         if gap.is_nan() || gap > self.tol {
             return Err(format!(
-                "boundary edge {} lies {gap:.3e} from the face's surface (tolerance {:.3e})",
-                k + 1,
+                "boundary edge {number} lies {gap:.3e} from the face's surface (tolerance {:.3e})",
                 self.tol
             ));
         }
@@ -255,10 +326,16 @@ impl<'a> FaceLoop<'a> {
     }
 
     fn mean_speeds(&self) -> [f64; 2] {
+        let uv: Vec<&[[f64; 2]]> = self.edges.iter().map(|e| &e.uv[..]).collect();
+        self.mean_scale(&uv)
+    }
+
+    /// Mean |x_u| and |x_v| over the (u, v) samples `uv` (1 where not positive).
+    fn mean_scale<V: AsRef<[[f64; 2]]>>(&self, uv: &[V]) -> [f64; 2] {
         let mut sum = [0.0; 2];
         let mut count = 0.0f64;
-        for e in &self.edges {
-            for q in &e.uv {
+        for e in uv {
+            for q in e.as_ref() {
                 let s = self.surface.eval(q[0], q[1]);
                 sum[0] += s.xu.norm();
                 sum[1] += s.xv.norm();
@@ -349,10 +426,15 @@ impl<'a> FaceLoop<'a> {
     ///
     /// `min_turn = None` is the plain rule: the four vertices turning most whichever way, the
     /// middles of the longest stretches.
+    ///
+    /// A loop through a pole ([`FaceLoop::pole`]) has the pole as one side: its vertex is
+    /// the first corner and the last (turning angle NaN), two more are picked as above.
     pub fn corners(&self, min_turn: Option<f64>) -> ([LoopPoint; 4], [f64; 4]) {
         let n = self.len();
         let ccw = self.signed_area(self.scale) > 0.0;
+        let want = if self.pole.is_some() { 3 } else { 4 };
         let mut by_angle: Vec<(usize, f64)> = (0..n)
+            .filter(|&k| Some(k) != self.pole)
             .map(|k| {
                 let t = self.turning(k);
                 let out = min_turn.is_some() && self.reentrant(k, ccw);
@@ -362,10 +444,11 @@ impl<'a> FaceLoop<'a> {
         by_angle.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         let mut ks: Vec<usize> = by_angle
             .iter()
-            .take(4)
+            .take(want - usize::from(self.pole.is_some()))
             .filter(|p| min_turn.is_none_or(|m| p.1 > m))
             .map(|p| p.0)
             .collect();
+        ks.extend(self.pole);
         if ks.is_empty() {
             ks.push(by_angle[0].0);
         }
@@ -374,7 +457,7 @@ impl<'a> FaceLoop<'a> {
             .into_iter()
             .map(|edge| LoopPoint { edge, sigma: 0.0 })
             .collect();
-        while pts.len() < 4 {
+        while pts.len() < want {
             // Split the longest stretch between consecutive points near its middle, at a point
             // where the loop does not bend outwards (a corner on a concave curve folds its
             // corner cell): the nearest such point to the middle within its middle half.
@@ -390,10 +473,17 @@ impl<'a> FaceLoop<'a> {
                 .unwrap_or_else(|| at(0.5));
             pts.insert(k + 1, mid);
         }
-        // Rotate so that the first corner is the earliest in loop order.
+        // Rotate so that the first corner is the earliest in loop order, or the pole.
         pts.sort_by(|a, b| (a.edge, a.sigma).partial_cmp(&(b.edge, b.sigma)).unwrap());
+        if let Some(k) = self.pole {
+            let at = pts.iter().position(|p| p.edge == k && p.sigma == 0.0);
+            pts.rotate_left(at.unwrap_or(0));
+            pts.push(pts[0]);
+        }
         let angles = pts.iter().map(|p| {
-            if p.sigma == 0.0 {
+            if Some(p.edge) == self.pole && p.sigma == 0.0 {
+                f64::NAN
+            } else if p.sigma == 0.0 {
                 self.turning(p.edge).to_degrees()
             } else {
                 0.0
@@ -498,7 +588,7 @@ impl<'a> FaceLoop<'a> {
             let i = (pos.floor() as usize).min(NS - 1);
             let w = pos - i as f64;
             let hint = [0, 1].map(|c| (1.0 - w) * e.uv[i][c] + w * e.uv[i + 1][c]);
-            let uv = self.project(x, hint, k)?;
+            let uv = self.project(x, hint, e.number)?;
             xs.push(x);
             uvs.push(uv);
         }

@@ -11,7 +11,6 @@ use std::collections::HashMap;
 /// up to the closing `;`, for the instances whose text contains one of `needles`.
 fn bodies<'a>(text: &'a str, needles: &[&str]) -> HashMap<u64, &'a str> {
     statements(text)
-        .into_iter()
         .map(|st| (st.id, &text[st.body..st.end - 1]))
         .filter(|(_, body)| needles.iter().any(|n| body.contains(n)))
         .collect()

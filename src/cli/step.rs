@@ -229,8 +229,17 @@ fn grid(a: &GridArgs) -> Result<()> {
             if !a.quiet {
                 println!("{block} ({}, {} × {} nodes):", f.surface_type, a.ni, a.nj);
                 if !g.corner_angles.is_empty() {
-                    let angles: Vec<String> =
-                        g.corner_angles.iter().map(|d| format!("{d:.0}°")).collect();
+                    let angles: Vec<String> = g
+                        .corner_angles
+                        .iter()
+                        .map(|d| {
+                            if d.is_nan() {
+                                "pole".to_string()
+                            } else {
+                                format!("{d:.0}°")
+                            }
+                        })
+                        .collect();
                     println!(
                         "  corners turning {}; boundary within {:.1e} of the surface",
                         angles.join(", "),

@@ -1,6 +1,7 @@
 //! Shared helpers of the integration tests: running the binary, temporary case files.
 #![allow(dead_code)]
 
+use ellipgrid::grid::Grid2;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -64,6 +65,33 @@ pub fn rejects(case: &str, needles: &[&str]) {
     assert!(!t.contains("panicked"), "{t}");
     let left: Vec<_> = std::fs::read_dir(d.path()).unwrap().collect();
     assert_eq!(left.len(), 1, "files written: {left:?}");
+}
+
+/// Node `p` of a surface grid.
+pub fn grid_node(g: &Grid2<3>, p: usize) -> [f64; 3] {
+    [g.coord(0)[p], g.coord(1)[p], g.coord(2)[p]]
+}
+
+/// Σ ½ |d₁ × d₂| over the cells of a surface grid (exact for planar quads and for the
+/// triangles at a pole).
+pub fn grid_area(g: &Grid2<3>) -> f64 {
+    let (ni, nj) = (g.ni(), g.nj());
+    let mut a = 0.0;
+    for j in 0..nj - 1 {
+        for i in 0..ni - 1 {
+            let p = |ii: usize, jj: usize| grid_node(g, ii + ni * jj);
+            let (x0, x1, x2, x3) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
+            let d1 = [x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]];
+            let d2 = [x3[0] - x1[0], x3[1] - x1[1], x3[2] - x1[2]];
+            let c = [
+                d1[1] * d2[2] - d1[2] * d2[1],
+                d1[2] * d2[0] - d1[0] * d2[2],
+                d1[0] * d2[1] - d1[1] * d2[0],
+            ];
+            a += 0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        }
+    }
+    a
 }
 
 /// OpenFOAM's aspect ratio of a planar grid's cells, as `checkMesh` computes it on the extruded

@@ -66,6 +66,15 @@ fn placements_along_x_without_a_reference_direction_get_one() {
 }
 
 #[test]
+fn references_in_strings_are_not_counted() {
+    let t = "#1=TRIMMED_CURVE('#1',#2,(#9),(#10),.T.,.CARTESIAN.);\n\
+        #4=EDGE_CURVE('it''s #1',#5,#6,#1,.T.);\n#7=X(#1, '''#1''', #2 );\n#8=Y('#2');\n";
+    let ids: HashMap<u64, ()> = [(1, ()), (2, ()), (3, ())].into_iter().collect();
+    let n = reference_counts(t, &ids);
+    assert_eq!((n[&1], n[&2], n[&3]), (2, 2, 0));
+}
+
+#[test]
 fn empty_lists_become_unset_and_entities_without_attributes_stay() {
     let t = "#1 = (\n  LENGTH_UNIT()\n  NAMED_UNIT(*)\n  SI_UNIT($, .METRE.)\n);\n\
         #2 = PRODUCT('p', 'NONE', $, ());\n#3 = X(( ), 'a(),()', (#1, ()));\n";
@@ -74,4 +83,15 @@ fn empty_lists_become_unset_and_entities_without_attributes_stay() {
     assert!(r.contains("#2 = PRODUCT('p', 'NONE', $, $);"), "{r}");
     assert!(r.contains("#3 = X($, 'a(),()', (#1, $));"), "{r}");
     assert!(matches!(empty_lists("#1 = A(1, (2));"), Cow::Borrowed(_)));
+}
+
+#[test]
+fn empty_lists_in_and_after_strings_stay() {
+    // `()` inside a string, after a string and after a doubled quote are no attributes
+    let t = "#1 = A('(),()', 'it''s', ());\n#2 = B('x'(), (''), 'a''(', ());\n";
+    let r = empty_lists(t);
+    assert_eq!(
+        r,
+        "#1 = A('(),()', 'it''s', $);\n#2 = B('x'(), (''), 'a''(', $);\n"
+    );
 }
