@@ -270,7 +270,7 @@ fn the_one_block_naca0012_o_grid_converges_fold_free() {
 #[test]
 fn newton_steps_reach_the_picard_reference_in_a_tenth_of_the_steps() {
     // The shipped example takes Newton steps; the reference is the damped Picard iteration
-    // run to 1e-13 (its own stop at 1e-10 is optimistic here, README).
+    // run to 1e-13 (its own stop at 1e-10 is checked against it below).
     let text = oneblock_text();
     assert!(text.contains("nonlinear = \"newton\""));
     let newton = generate(&text);
