@@ -5,7 +5,8 @@ Usage: check_conn.py GRID3D.x CONN [GRID3D.x CONN ...]
 
 GRID3D.x is the grid as a 3D whole multi-block Fortran-unformatted double Plot3D file
 (`ellipgrid convert --three-d`); 2D blocks (KMAX = 1) are extruded to two layers so that
-their sides become faces. plot3d.connectivity finds the matching faces from the coordinates
+their sides become faces (surface blocks too, e.g. a STEP file's face blocks: a shift along z
+keeps coincident sides coincident). plot3d.connectivity finds the matching faces from the coordinates
 alone; they must be exactly the 1-to-1 interfaces of the .conn file (same blocks, same index
 ranges), and plot3d's exterior faces (apart from the extrusion's k planes) must cover exactly
 the block sides the .conn file's boundary patches cover (plot3d merges neighbouring exterior

@@ -5,7 +5,8 @@
 #    colours, and on a .gltf (.ci/gltf_validate.js; zero errors required);
 #  - NASA's plot3d package on the connectivity file of every multi-block example: the faces
 #    it matches from the coordinates alone are the .conn file's interfaces, its exterior
-#    faces the .conn file's patches (.ci/check_conn.py).
+#    faces the .conn file's patches (.ci/check_conn.py), and on that of a STEP file's face
+#    blocks (`step grid --all -o .conn`).
 # Needs: python3 with vtk and plot3d (pip install vtk plot3d), node with gltf-validator under
 # target/ci-node.
 set -euo pipefail
@@ -40,6 +41,11 @@ for ex in examples/*.toml; do
     conns+=("$work/${name}_3d.x" "$work/$name.conn")
   fi
 done
+# The connectivity of CAD face blocks (`step grid … -o .conn`): the plate's hole rings, its
+# cylinder faces' seams and the faces' common edges.
+"$exe" step grid data/step/plate_with_holes.step --all --ni 9 --nj 9 -q \
+  -o "$work/plate_faces.x" -o "$work/plate_faces.conn"
+conns+=("$work/plate_faces.x" "$work/plate_faces.conn")
 status=0
 python3 .ci/check_conn.py "${conns[@]}" > "$work/conn.log" 2>&1 || status=$?
 grep -a 'conn: \|only in' "$work/conn.log" || cat "$work/conn.log"
