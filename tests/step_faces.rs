@@ -4,7 +4,7 @@
 //! to the exact area at second order (error ratio ≈ 4 per halving), no folds.
 
 mod common;
-use common::{ellipgrid, grid_area as area, grid_node as node, root, text};
+use common::{assert_second_order, ellipgrid, grid_area as area, grid_node as node, root, text};
 use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Grid2;
@@ -46,13 +46,7 @@ fn converges(name: &str, exact: f64, dist: impl Fn([f64; 3]) -> f64) -> Vec<f64>
         );
         errs.push((area(grid) - exact).abs() / exact);
     }
-    for w in errs.windows(2) {
-        let r = w[0] / w[1];
-        assert!(
-            (3.3..5.0).contains(&r),
-            "{name}: area errors {errs:?}, ratio {r}"
-        );
-    }
+    assert_second_order(name, &errs);
     errs
 }
 

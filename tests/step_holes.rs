@@ -6,7 +6,7 @@
 //! blocks' normals the face's.
 
 mod common;
-use common::{ellipgrid, root, text};
+use common::{ellipgrid, grid_node as node, root, text};
 use ellipgrid::cad::{grid_face_blocks, read_step_faces, FaceGrid, Route};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Grid2;
@@ -25,10 +25,6 @@ fn blocks(name: &str, k: usize, (ni, nj): (usize, usize)) -> Vec<FaceGrid> {
     let d = DistributionSpec::Uniform {};
     grid_face_blocks(&faces[k - 1], (ni, nj), &d, &d, &mut DirectLu::new(), name)
         .unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn node(g: &Grid2<3>, p: usize) -> [f64; 3] {
-    [g.coord(0)[p], g.coord(1)[p], g.coord(2)[p]]
 }
 
 /// Σ ½ |d₁ × d₂| over the cells (exact for planar quads), and Σ ½ (d₁ × d₂) · n at the cell

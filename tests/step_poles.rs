@@ -7,7 +7,7 @@
 //! report's pole rules (triangles at the pole).
 
 mod common;
-use common::{ellipgrid, grid_area as area, grid_node as node, root, text};
+use common::{assert_second_order, ellipgrid, grid_area as area, grid_node as node, root, text};
 use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid, Route};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::quality;
@@ -68,13 +68,7 @@ fn converges(
         assert!(g.corner_angles[0].is_nan() && g.corner_angles[3].is_nan());
         errs.push((area(grid) - exact).abs() / exact);
     }
-    for w in errs.windows(2) {
-        let r = w[0] / w[1];
-        assert!(
-            (3.3..5.0).contains(&r),
-            "{name}: area errors {errs:?}, ratio {r}"
-        );
-    }
+    assert_second_order(name, &errs);
 }
 
 fn radius_xy(p: [f64; 3]) -> f64 {

@@ -123,3 +123,15 @@ pub fn foam_aspect_ratio_max(g: &ellipgrid::Grid2<2>) -> (f64, usize, usize) {
     }
     worst
 }
+
+/// Errors of a grid family at n, 2n − 1, 4n − 3, … nodes fall at second order: every ratio of
+/// successive errors within 3.3 … 5 (4 per halving).
+pub fn assert_second_order(name: &str, errs: &[f64]) {
+    for w in errs.windows(2) {
+        let r = w[0] / w[1];
+        assert!(
+            (3.3..5.0).contains(&r),
+            "{name}: errors {errs:?}, ratio {r}"
+        );
+    }
+}
