@@ -203,6 +203,18 @@ impl LoadedCase {
         )
     }
 
+    /// What block k asks of its sides: orthogonality and wall spacings (flags E1 … E4).
+    pub fn block_sides(&self, k: usize) -> Result<crate::elliptic::orthogonal::Sides> {
+        let wall = match &self.topology {
+            Some(t) => t.blocks[k].wall,
+            None => topology::parse_walls(&self.case.blocks[k].wall, &self.block_place(k))?,
+        };
+        Ok(crate::elliptic::orthogonal::Sides {
+            orthogonal: self.block_orthogonal(k)?,
+            wall,
+        })
+    }
+
     /// The validated planar boundary of block k.
     pub fn planar_boundary(&self, k: usize) -> Result<Boundary2<2>> {
         self.planar_from(self.edge_point_lists(k)?, &self.block_place(k))

@@ -129,6 +129,10 @@ pub struct BlockSpec {
     /// Edges at which the grid is made orthogonal (Section 2.4), e.g. `["E3"]`; default none.
     #[serde(default)]
     pub orthogonal: Vec<String>,
+    /// Edges along which the first spacing off the edge is held to the side edges'
+    /// distributions ([`crate::elliptic::wall2d`]), e.g. `"E3"` or `["E3", "E1"]`; default none.
+    #[serde(default, deserialize_with = "one_or_more")]
+    pub wall: Vec<String>,
     #[serde(rename = "E1")]
     pub e1: Option<SideSpec>,
     #[serde(rename = "E2")]
@@ -144,6 +148,22 @@ pub struct BlockSpec {
     /// A reference surface: the report gives the distance of the grid's nodes from it (for
     /// example Scherk's surface for a minimal-surface block spanned by edges on it).
     pub reference: Option<SurfaceSpec>,
+}
+
+/// A string or a list of strings.
+fn one_or_more<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Vec<String>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum OneOrMore {
+        One(String),
+        More(Vec<String>),
+    }
+    Ok(match OneOrMore::deserialize(d)? {
+        OneOrMore::One(s) => vec![s],
+        OneOrMore::More(v) => v,
+    })
 }
 
 impl BlockSpec {
@@ -223,6 +243,10 @@ pub struct TopoEdgeSpec {
     /// The grid is orthogonal at the edge on every block side it lies on (Section 2.4).
     #[serde(default)]
     pub orthogonal: bool,
+    /// The first spacing off the edge is held along it on every block side it lies on: the
+    /// spacings of the edges leaving it, interpolated by arclength ([`crate::elliptic::wall2d`]).
+    #[serde(default)]
+    pub wall: bool,
     /// "fixed" (default: the nodes are where the distribution puts them) or "floating" (an
     /// interior edge whose interior nodes move with the grid of the blocks it joins).
     pub interface: Option<String>,

@@ -38,32 +38,43 @@ pub(super) fn build(case: &Case, place: &str) -> Result<Option<Topology>> {
         }
         let sides = side_names(b.sides(), &at)?;
         let orthogonal = crate::elliptic::orthogonal::parse_edges(&b.orthogonal, &at)?;
+        let wall = parse_walls(&b.wall, &at)?;
         blocks.push(BlockSides {
             name,
             sides,
             orthogonal,
+            wall,
         });
     }
     let mut topo = Topology::new(vertices, edges, &blocks, place)?;
     check_bcs(&topo, place)?;
-    // Edge flags: a side is orthogonal if all its edges are; mixed chains are errors.
+    // Edge flags: a side is orthogonal (holds a wall spacing) if all its edges are; mixed
+    // chains are errors.
     for b in 0..topo.blocks.len() {
         for e in Edge::ALL {
-            let flags: Vec<bool> = topo.blocks[b].sides[e.index()]
-                .iter()
-                .map(|u| topo.edges[u.edge].orthogonal)
-                .collect();
-            if flags.iter().all(|f| *f) {
-                topo.blocks[b].orthogonal[e.index()] = true;
-            } else if flags.iter().any(|f| *f) {
-                return Err(Error::input(
-                    topo.block_place(place, b),
-                    format!(
-                        "side {e} is the chain {} of which only some edges are orthogonal; \
-                         orthogonality holds along a whole side",
-                        topo.chain_names(b, e)
-                    ),
-                ));
+            let uses = &topo.blocks[b].sides[e.index()];
+            let orth: Vec<bool> = uses.iter().map(|u| topo.edges[u.edge].orthogonal).collect();
+            let wall: Vec<bool> = uses.iter().map(|u| topo.edges[u.edge].wall).collect();
+            for (flags, what, holds) in [
+                (orth, "orthogonal", "orthogonality holds"),
+                (wall, "walls", "a wall spacing holds"),
+            ] {
+                if flags.iter().all(|f| *f) {
+                    let blk = &mut topo.blocks[b];
+                    match what {
+                        "orthogonal" => blk.orthogonal[e.index()] = true,
+                        _ => blk.wall[e.index()] = true,
+                    }
+                } else if flags.iter().any(|f| *f) {
+                    return Err(Error::input(
+                        topo.block_place(place, b),
+                        format!(
+                            "side {e} is the chain {} of which only some edges are {what}; \
+                             {holds} along a whole side",
+                            topo.chain_names(b, e)
+                        ),
+                    ));
+                }
             }
         }
         let dims = topo.dims(b);
@@ -112,6 +123,7 @@ pub(super) fn topo_edges(case: &Case, place: &str) -> Result<(Vec<String>, Vec<T
             to: vertex(&e.to, &e.name)?,
             n: e.n,
             orthogonal: e.orthogonal,
+            wall: e.wall,
             floating,
             family: e.family.clone().unwrap_or_else(|| e.name.clone()),
             bc: e.bc.clone(),
@@ -385,4 +397,19 @@ fn check_bcs(topo: &Topology, place: &str) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Parses the block key `wall` (edge names E1 … E4) into flags.
+pub(crate) fn parse_walls(names: &[String], place: &str) -> Result<[bool; 4]> {
+    let mut wall = [false; 4];
+    for n in names {
+        let e = Edge::parse(n).ok_or_else(|| {
+            Error::input(
+                place,
+                format!("wall: unknown edge '{n}': expected E1, E2, E3 or E4"),
+            )
+        })?;
+        wall[e.index()] = true;
+    }
+    Ok(wall)
 }

@@ -57,6 +57,13 @@ pub(super) fn build3(case: &Case, place: &str) -> Result<Option<Topology3>> {
                 "floating edges are for 2D topologies; in a volume topology every edge is fixed",
             ));
         }
+        if spec.wall {
+            return Err(Error::input(
+                at,
+                "in a volume topology the wall spacing is held at a volume's face (wall = \"F3\" \
+                 in its [[volume]] table), not at an edge",
+            ));
+        }
         if spec.orthogonal {
             return Err(Error::input(
                 at,
@@ -80,6 +87,7 @@ pub(super) fn build3(case: &Case, place: &str) -> Result<Option<Topology3>> {
             name: f.name.clone(),
             sides: side_names(f.sides(), &at)?,
             orthogonal: crate::elliptic::orthogonal::parse_edges(&f.orthogonal, &at)?,
+            wall: [false; 4],
         });
     }
     let faces = Topology::new_faces(vertices, edges, &sides, place)?;

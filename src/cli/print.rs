@@ -45,6 +45,13 @@ pub fn block(b: &BlockReport) {
             t.initial_grid, t.laplace_beltrami, t.target, t.inversion
         );
     }
+    for w in &b.wall {
+        println!(
+            "  wall {}: first spacing {:.3e} … {:.3e}, {:.3} … {:.3} of the side edges' spacing \
+             interpolated along the wall ({} nodes)",
+            w.edge, w.first_min, w.first_max, w.ratio_min, w.ratio_max, w.nodes
+        );
+    }
     println!("{}", b.quality);
 }
 

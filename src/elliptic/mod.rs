@@ -16,6 +16,7 @@
 //! | harmonic s, t with Neumann edges | [50–53] | [`harmonic`] |
 //! | orthogonality at chosen edges (Section 2.4) | [46–49] | [`orthogonal`] |
 //! | wall spacing and wall-normal lines of volume blocks | — | [`mod@wall`], [`wall_normal`] |
+//! | wall spacing along edges of 2D blocks | — | [`wall2d`] |
 pub mod anderson;
 pub mod domain;
 pub mod harmonic;
@@ -31,4 +32,5 @@ pub mod poisson2d;
 pub mod poisson3d;
 pub mod volume;
 pub mod wall;
+pub mod wall2d;
 pub mod wall_normal;

@@ -16,6 +16,7 @@
 
 use crate::algebraic::blend::hermite_blend;
 use crate::algebraic::control2d::Control2;
+use crate::algebraic::transform::{straight_line, ParamGrid};
 use crate::algebraic::ControlKind;
 use crate::elliptic::domain::grid_block;
 use crate::elliptic::harmonic::harmonic_st;
@@ -23,6 +24,7 @@ use crate::elliptic::nested;
 use crate::elliptic::picard::BlockResult;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::poisson2d;
+use crate::elliptic::wall2d::hold_wall_spacing;
 use crate::grid::arclength::EdgeFunctions;
 use crate::grid::boundary::Boundary2;
 use crate::grid::{Edge, Grid2};
@@ -40,6 +42,9 @@ pub struct OrthogonalResult<const D: usize> {
     pub straight: PicardInfo,
     /// The edge functions of step 2, eq. [46] (arclength on the edges that are not orthogonal).
     pub edge_functions: EdgeFunctions,
+    /// The algebraic parameters whose control functions gave the final grid: the Hermite blend
+    /// of step 3, or the straight-line parameters [39, 40] without orthogonal edges.
+    pub params: ParamGrid,
 }
 
 /// Parses edge names ("E1" … "E4", case-insensitive) into the flags E1, E2, E3, E4.
@@ -212,18 +217,21 @@ fn steps<const D: usize>(
     let nested = start.is_none() && params.nested_for(solver.name());
     let step1 = grid_block(b, start, ControlKind::Algebraic, solver, params, place)?;
     if !orthogonal.contains(&true) {
+        let edge_functions = EdgeFunctions::arclength(b);
         return Ok(OrthogonalResult {
             grid: step1.grid,
             picard: step1.picard.clone(),
             straight: step1.picard,
-            edge_functions: EdgeFunctions::arclength(b),
+            params: straight_line(&edge_functions),
+            edge_functions,
         });
     }
     let (s, t) = harmonic_st(&step1.grid, orthogonal, solver, place)?;
     let ef = edge_functions(&step1.grid, &s, &t, place)?;
     let pg = hermite_blend(&ef, orthogonal, place)?;
     let (grid, picard) = if nested {
-        let (r, _) = nested::solve_nested_from(b, step1.grid, pg, solver, params, place, t0)?;
+        let (r, _) =
+            nested::solve_nested_from(b, step1.grid, pg.clone(), solver, params, place, t0)?;
         (r.grid, r.picard)
     } else {
         let ctrl = Control2::from_algebraic(&pg);
@@ -234,6 +242,7 @@ fn steps<const D: usize>(
         picard,
         straight: step1.picard,
         edge_functions: ef,
+        params: pg,
     })
 }
 
@@ -269,20 +278,53 @@ pub fn grid_block_with<const D: usize>(
     params: &PicardParams,
     place: &str,
 ) -> Result<BlockResult<D>> {
-    if !orthogonal.contains(&true) {
+    let sides = Sides {
+        orthogonal,
+        wall: [false; 4],
+    };
+    grid_block_sides(b, start, sides, kind, solver, params, place)
+}
+
+/// What a block asks of its sides: orthogonality (Section 2.4) and a held wall spacing
+/// ([`crate::elliptic::wall2d`]), flags for E1, E2, E3, E4.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Sides {
+    pub orthogonal: [bool; 4],
+    pub wall: [bool; 4],
+}
+
+/// [`grid_block_with`], then the wall spacing held at the `sides.wall` edges
+/// ([`crate::elliptic::wall2d`]); the history is that of all solves after step 1.
+///
+/// # Errors
+/// As [`grid_block_with`]; a wall spacing with Laplace control functions.
+pub fn grid_block_sides<const D: usize>(
+    b: &Boundary2<D>,
+    start: Option<Grid2<D>>,
+    sides: Sides,
+    kind: ControlKind,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    place: &str,
+) -> Result<BlockResult<D>> {
+    let (orthogonal, walls) = (sides.orthogonal, sides.wall);
+    if !orthogonal.contains(&true) && !walls.contains(&true) {
         return grid_block(b, start, kind, solver, params, place);
     }
     if kind != ControlKind::Algebraic {
         return Err(Error::input(
             place,
-            "orthogonal edges need the algebraic control functions (control = \"algebraic\")",
+            "orthogonal edges and wall spacings need the algebraic control functions \
+             (control = \"algebraic\")",
         ));
     }
     let r = steps(b, start, orthogonal, solver, params, place)?;
-    Ok(BlockResult {
-        grid: r.grid,
-        picard: r.picard,
-    })
+    let (grid, held) = hold_wall_spacing(r.grid, r.params, walls, solver, params, place)?;
+    let mut picard = r.picard;
+    if let Some(h) = held {
+        picard.append(h);
+    }
+    Ok(BlockResult { grid, picard })
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ use crate::algebraic::control3d::Control3;
 use crate::algebraic::flat_edge::edge_functions;
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
-use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep, VolumeResult};
+use crate::elliptic::picard::{append, PicardInfo, PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::wall::{
     remap_volume, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES, TOLERANCE,
 };
@@ -268,17 +268,4 @@ pub fn grid_volume_corrected(
         grid: x,
         picard: info.expect("at least one solve"),
     })
-}
-
-/// Appends the history of one solve to that of the previous ones.
-fn append(all: &mut Option<PicardInfo>, step: PicardInfo) {
-    match all {
-        None => *all = Some(step),
-        Some(a) => {
-            a.steps += step.steps;
-            a.history.extend(step.history);
-            a.converged = step.converged;
-            a.final_residual = step.final_residual;
-        }
-    }
 }

@@ -208,6 +208,27 @@ pub struct PicardInfo {
     pub history: Vec<PicardStep>,
 }
 
+impl PicardInfo {
+    /// Appends the history of a later solve of the same grid (a correction pass).
+    pub fn append(&mut self, later: PicardInfo) {
+        self.steps += later.steps;
+        self.history.extend(later.history);
+        self.converged = later.converged;
+        self.final_residual = later.final_residual;
+        if let (Some(a), Some(b)) = (self.work_units, later.work_units) {
+            self.work_units = Some(a + b);
+        }
+    }
+}
+
+/// Appends `step` to the history of the solves so far, if any.
+pub(crate) fn append(all: &mut Option<PicardInfo>, step: PicardInfo) {
+    match all {
+        None => *all = Some(step),
+        Some(a) => a.append(step),
+    }
+}
+
 /// A Picard step whose update (relative to the diameter) was below this changed the operator
 /// so little that the next one is prepared by [`crate::solve::LinearSolver::update`] (multigrid keeps its
 /// coarse levels) instead of a full setup.

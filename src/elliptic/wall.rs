@@ -88,7 +88,7 @@ pub fn remap(v: f64, r: f64) -> f64 {
 /// wall-oriented parameters `v0` and distances `d0` of the uncorrected grid and the
 /// interpolated edge profile `dstar`: the edges' profile at the wall, the uncorrected grid
 /// towards the opposite face.
-fn blend_targets(v0: &[f64], d0: &[f64], dstar: &[f64]) -> Vec<f64> {
+pub(crate) fn blend_targets(v0: &[f64], d0: &[f64], dstar: &[f64]) -> Vec<f64> {
     v0.iter()
         .zip(d0.iter().zip(dstar))
         .map(|(&v, (&d, &t))| {
@@ -102,7 +102,7 @@ fn blend_targets(v0: &[f64], d0: &[f64], dstar: &[f64]) -> Vec<f64> {
 /// distances `d` from the wall towards the targets `t` (v ← v t/d, as X is locally linear in
 /// v). Returns the column's largest |ln(t/d)| before the remap. Falls back to the monotone
 /// remap of the first node's ratio if the node-wise ratios would break monotonicity.
-fn remap_column(v: &mut [f64], d: &[f64], t: &[f64]) -> f64 {
+pub(crate) fn remap_column(v: &mut [f64], d: &[f64], t: &[f64]) -> f64 {
     let n = v.len();
     let ratio = |j: usize| (t[j] / d[j]).clamp(1.0 / MAX_RATIO, MAX_RATIO);
     let err = (1..n - 1)

@@ -14,8 +14,9 @@ pub use mesh::{flow_input, flow_over, mesh_options, write_mesh, MeshOptions, FOA
 
 use crate::algebraic::transform::transfinite;
 use crate::case::{BlockKind, LoadedCase};
-use crate::elliptic::orthogonal::grid_block_with;
+use crate::elliptic::orthogonal::grid_block_sides;
 use crate::elliptic::picard::PicardInfo;
+use crate::elliptic::wall2d::{wall_spacings, WallSpacing2};
 use crate::grid::Grid2;
 use crate::io::connectivity::ConnFile;
 use crate::io::plot3d::{self, ByteOrder, Encoding, Plot3dFormat, Precision};
@@ -49,6 +50,9 @@ pub struct BlockReport {
     /// Distance of the nodes from the block's `reference` surface, if it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub surface_distance: Option<SurfaceDistance>,
+    /// The first spacing along each wall edge (`wall`) against its targets.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub wall: Vec<WallSpacing2>,
     pub quality: QualityReport,
 }
 
@@ -159,6 +163,19 @@ pub struct Generated {
     pub connectivity: Option<ConnFile>,
 }
 
+/// A wall spacing is held on planar and minimal blocks (Section 2 and 3), not yet on surface
+/// blocks (Section 4).
+pub(crate) fn no_surface_wall(wall: [bool; 4], place: &str) -> Result<()> {
+    if wall.contains(&true) {
+        return Err(Error::input(
+            place,
+            "a wall spacing (wall) is held on planar and minimal blocks; surface blocks \
+             (kind = \"surface\") do not support it yet",
+        ));
+    }
+    Ok(())
+}
+
 /// Grids every block of a case. `progress` receives a line per finished block.
 pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Result<Generated> {
     let spec = &case.case;
@@ -179,26 +196,31 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
         let mut solver = solve::select::by_name(&spec.solver.linear)
             .map_err(|m| Error::input(format!("{}: [solver]", case.path.display()), m))?;
         let (ctrl, params) = (spec.solver.control, &spec.solver.picard);
-        let orth = case.block_orthogonal(k)?;
+        let sides = case.block_sides(k)?;
+        let orth = sides.orthogonal;
+        let mut wall = Vec::new();
         let mut surface_steps = None;
         let mut surface_distance = None;
         let (block, picard, quality) = match spec.blocks[k].kind {
             BlockKind::Planar => {
                 let b = case.planar_boundary(k)?;
-                let r = grid_block_with(&b, None, orth, ctrl, solver.as_mut(), params, &place)?;
+                let r = grid_block_sides(&b, None, sides, ctrl, solver.as_mut(), params, &place)?;
                 let q = quality::quality2d(&r.grid);
+                wall = wall_spacings(&r.grid, sides.wall);
                 (Block::Planar(r.grid), Some(r.picard), q)
             }
             BlockKind::Minimal => {
                 let b = case.minimal_boundary(k)?;
-                let r = grid_block_with(&b, None, orth, ctrl, solver.as_mut(), params, &place)?;
+                let r = grid_block_sides(&b, None, sides, ctrl, solver.as_mut(), params, &place)?;
                 let q = quality::quality_surface(&r.grid);
+                wall = wall_spacings(&r.grid, sides.wall);
                 if let Some(s) = case.reference_surface(k)? {
                     surface_distance = Some(self::surface_distance(&r.grid, s.as_ref(), &place)?);
                 }
                 (Block::Surface(r.grid), Some(r.picard), q)
             }
             BlockKind::Surface => {
+                no_surface_wall(sides.wall, &place)?;
                 let (surface, uv) = case.surface_block(k)?;
                 let r =
                     grid_surface_orthogonal(surface.as_ref(), &uv, orth, solver.as_mut(), &place)?;
@@ -217,6 +239,7 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             picard,
             surface_steps,
             surface_distance,
+            wall,
             quality,
         };
         progress(&rep);

@@ -5,9 +5,10 @@
 
 use super::{surface_distance, BlockReport};
 use crate::case::{BlockKind, LoadedCase};
-use crate::elliptic::orthogonal::grid_block_with;
+use crate::elliptic::orthogonal::{grid_block_sides, Sides};
 use crate::elliptic::periodic;
 use crate::elliptic::picard::PicardInfo;
+use crate::elliptic::wall2d::{wall_spacings, WallSpacing2};
 use crate::grid::boundary::Boundary2;
 use crate::grid::topology::{Group, Topology};
 use crate::grid::Grid2;
@@ -146,7 +147,7 @@ fn grid_group(
     let lists = case.group_points(g)?;
     let params = &spec.picard;
     let mut out = Vec::new();
-    let mut finish = |b: usize, block: Block, picard: Option<&PicardInfo>, q, d, steps| {
+    let mut finish = |b: usize, block: Block, picard: Option<&PicardInfo>, q, d, steps, wall| {
         let dims = block.dims();
         let rep = BlockReport {
             name: topo.blocks[b].name.clone(),
@@ -157,6 +158,7 @@ fn grid_group(
             picard: picard.cloned(),
             surface_steps: steps,
             surface_distance: d,
+            wall,
             quality: q,
         };
         out.push((b, block, rep));
@@ -165,16 +167,29 @@ fn grid_group(
         BlockKind::Planar => {
             let bnd = case.planar_from(lists, &place)?;
             let r = solve_group(&bnd, g, case, solver.as_mut(), params, &place)?;
+            // The wall spacing along the group's sides (a row's pieces share its report).
+            let walls: Vec<WallSpacing2> = wall_spacings(&r.grid, g.wall);
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality2d(&grid);
-                finish(p.block, Block::Planar(grid), Some(&r.picard), q, None, None);
+                let w = walls.clone();
+                finish(
+                    p.block,
+                    Block::Planar(grid),
+                    Some(&r.picard),
+                    q,
+                    None,
+                    None,
+                    w,
+                );
             }
         }
         BlockKind::Minimal => {
             let pts = lists.map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
             let bnd = Boundary2::new(pts, &place)?;
             let r = solve_group(&bnd, g, case, solver.as_mut(), params, &place)?;
+            // The wall spacing along the group's sides (a row's pieces share its report).
+            let walls: Vec<WallSpacing2> = wall_spacings(&r.grid, g.wall);
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality_surface(&grid);
@@ -183,7 +198,16 @@ fn grid_group(
                     Some(s) => Some(surface_distance(&grid, s.as_ref(), &at)?),
                     None => None,
                 };
-                finish(p.block, Block::Surface(grid), Some(&r.picard), q, d, None);
+                let w = walls.clone();
+                finish(
+                    p.block,
+                    Block::Surface(grid),
+                    Some(&r.picard),
+                    q,
+                    d,
+                    None,
+                    w,
+                );
             }
         }
         BlockKind::Surface if g.periodic => {
@@ -194,6 +218,7 @@ fn grid_group(
             ));
         }
         BlockKind::Surface => {
+            super::no_surface_wall(g.wall, &place)?;
             // Section 4 on the blocks' surface, for any sides lying on it (surface::face); a
             // row joined by floating edges is one face on one surface.
             let surface = group_surface(case, g, &place)?;
@@ -218,6 +243,7 @@ fn grid_group(
                     q,
                     None,
                     steps,
+                    Vec::new(),
                 );
             }
         }
@@ -261,8 +287,19 @@ fn solve_group<const D: usize>(
 ) -> Result<crate::elliptic::picard::Solved<Grid2<D>>> {
     let ctrl = case.case.solver.control;
     if g.periodic {
+        if g.wall.contains(&true) {
+            return Err(Error::input(
+                place,
+                "a wall spacing (wall) is not held on a periodic block (a ring of floating \
+                 edges) yet: fix one edge of the ring",
+            ));
+        }
         // the seam floats: periodic in i, its own solver (elliptic::periodic)
         return periodic::grid_block(bnd, None, g.orthogonal, ctrl, params, place);
     }
-    grid_block_with(bnd, None, g.orthogonal, ctrl, solver, params, place)
+    let sides = Sides {
+        orthogonal: g.orthogonal,
+        wall: g.wall,
+    };
+    grid_block_sides(bnd, None, sides, ctrl, solver, params, place)
 }

@@ -184,6 +184,11 @@ pub fn quality_surface(g: &Grid2<3>) -> QualityReport {
     report(&Nodes::new(g))
 }
 
+/// Quality of a planar (D = 2) or surface (D = 3) grid, for code generic in D.
+pub fn quality_any<const D: usize>(g: &Grid2<D>) -> QualityReport {
+    report(&Nodes::new(g))
+}
+
 /// Per-cell arrays of a planar grid for VTK cell data, cell (i, j) at i + (ni − 1) j:
 /// "jacobian_min", "scaled_jacobian_min", "skewness", "aspect_ratio" (Jacobians relative to the
 /// grid's orientation). Empty arrays for grids smaller than 2 × 2.

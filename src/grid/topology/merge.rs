@@ -91,6 +91,8 @@ pub struct Group {
     pub pieces: Vec<GroupPiece>,
     pub sides: [Vec<EdgeUse>; 4],
     pub orthogonal: [bool; 4],
+    /// Wall spacing held at each side of the group.
+    pub wall: [bool; 4],
     /// True if the floating edges close a ring: the group is periodic in i, its E1 and E2
     /// are the same floating edge (the seam), and its grid's column N is column 0.
     pub periodic: bool,
@@ -222,10 +224,10 @@ impl Topology {
         };
         let apply = |b: usize, ops: &[Op]| {
             let blk = &self.blocks[b];
-            ops.iter()
-                .fold((blk.sides.clone(), blk.orthogonal), |(s, f), op| {
-                    (op.sides(&s), op.flags(f))
-                })
+            ops.iter().fold(
+                (blk.sides.clone(), blk.orthogonal, blk.wall),
+                |(s, f, w), op| (op.sides(&s), op.flags(f), op.flags(w)),
+            )
         };
         // The first block keeps its own indexing where it can: of a ring's two floating
         // sides, the one at E2 (or E4) leads on.
@@ -235,7 +237,7 @@ impl Topology {
             .find(|(_, s)| matches!(s, Edge::E2 | Edge::E4))
             .or(lead.first());
         let mut ops = lead.map_or(vec![], |(_, s)| to_e2(*s));
-        let (mut sides, mut orth) = apply(first, &ops);
+        let (mut sides, mut orth, mut wall) = apply(first, &ops);
         let mut pieces = Vec::new();
         let mut block = first;
         let mut offset = 0;
@@ -284,12 +286,25 @@ impl Topology {
                 break;
             }
             ops = to_e1(s);
-            let (ns, _) = apply(next, &ops);
+            let (ns, ..) = apply(next, &ops);
             if ns[0][0].reversed != e2.reversed {
                 ops.push(Op::FlipJ);
             }
-            let (ns, nf) = apply(next, &ops);
+            let (ns, nf, nw) = apply(next, &ops);
             for (k, side) in [(2, Edge::E3), (3, Edge::E4)] {
+                if nw[k] != wall[k] {
+                    return Err(Error::input(
+                        &at,
+                        format!(
+                            "blocks '{}' and '{}' are joined by floating edge '{}' but only \
+                             one holds a wall spacing along their common side {side} (of the \
+                             row); a wall spacing holds along a whole side of the row",
+                            self.blocks[block].name,
+                            self.blocks[next].name,
+                            self.edges[e2.edge].name
+                        ),
+                    ));
+                }
                 if nf[k] != orth[k] {
                     return Err(Error::input(
                         &at,
@@ -309,12 +324,15 @@ impl Topology {
             sides[3].extend(ns[3].iter().copied());
             sides[1] = ns[1].clone();
             orth[1] = nf[1];
+            wall[1] = nw[1];
             block = next;
         }
         if ring {
             // the seam is inside the periodic block, not a side
             orth[0] = false;
             orth[1] = false;
+            wall[0] = false;
+            wall[1] = false;
         }
         Ok(Group {
             name: pieces
@@ -325,6 +343,7 @@ impl Topology {
             pieces,
             sides,
             orthogonal: orth,
+            wall,
             periodic: ring,
         })
     }

@@ -28,6 +28,9 @@ pub struct TopoEdge {
     pub n: usize,
     /// Grid orthogonal at this edge on every side that has it (Section 2.4).
     pub orthogonal: bool,
+    /// The first spacing off this edge is held along it on every side that has it
+    /// ([`crate::elliptic::wall2d`]).
+    pub wall: bool,
     /// An interior edge whose interior nodes move with the grid (shape and distribution).
     pub floating: bool,
     /// Boundary-patch family (a boundary edge's name for the solver's boundary conditions).
@@ -52,6 +55,8 @@ pub struct TopoBlock {
     pub sides: [Vec<EdgeUse>; 4],
     /// Orthogonality asked for at each side (block-level flags or edges marked orthogonal).
     pub orthogonal: [bool; 4],
+    /// Wall spacing held at each side (block-level flags or edges marked `wall`).
+    pub wall: [bool; 4],
 }
 
 /// A block as the case file gives it: per side, edge names in index order, each with a forced
@@ -61,6 +66,7 @@ pub struct BlockSides {
     pub name: String,
     pub sides: [Vec<(String, Option<bool>)>; 4],
     pub orthogonal: [bool; 4],
+    pub wall: [bool; 4],
 }
 
 /// Vertices, edges and blocks.
@@ -238,6 +244,7 @@ impl Topology {
                         name: b.name.clone(),
                         sides,
                         orthogonal: b.orthogonal,
+                        wall: b.wall,
                     });
                 }
                 Err(m) if !m.is_empty() => {

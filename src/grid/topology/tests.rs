@@ -8,6 +8,7 @@ fn edge(name: &str, from: usize, to: usize, n: usize, floating: bool) -> TopoEdg
         to,
         n,
         orthogonal: false,
+        wall: false,
         floating,
         family: name.into(),
         bc: None,
@@ -36,12 +37,14 @@ fn two_squares(floating: bool) -> Topology {
             name: "left".into(),
             sides: sides([&["ad"], &["m"], &["ab"], &["de"]]),
             orthogonal: [false; 4],
+            wall: [false; 4],
         },
         // Transposed: its E3 is the shared edge.
         BlockSides {
             name: "right".into(),
             sides: sides([&["cb"], &["ef"], &["m"], &["cf"]]),
             orthogonal: [false; 4],
+            wall: [false; 4],
         },
     ];
     Topology::new(v, e, &blocks, "t").unwrap()
@@ -111,6 +114,7 @@ fn structural_errors_name_the_block_and_the_edges() {
         name: "q".into(),
         sides: sides([&["ac"], &["bd"], &["ab"], &["cd"]]),
         orthogonal: [false; 4],
+        wall: [false; 4],
     }];
     let m = Topology::new(v.clone(), e.clone(), &b, "t")
         .unwrap_err()
@@ -142,6 +146,7 @@ fn ring(two: bool) -> Topology {
             name: "one".into(),
             sides: sides([&["c0"], &["c0"], &["in"], &["out"]]),
             orthogonal: [false; 4],
+            wall: [false; 4],
         }];
         return Topology::new(v, e, &b, "t").unwrap();
     }
@@ -159,11 +164,13 @@ fn ring(two: bool) -> Topology {
             name: "top".into(),
             sides: sides([&["c0"], &["c1"], &["i0"], &["o0"]]),
             orthogonal: [false; 4],
+            wall: [false; 4],
         },
         BlockSides {
             name: "bottom".into(),
             sides: sides([&["c1"], &["c0"], &["i1"], &["o1"]]),
             orthogonal: [false; 4],
+            wall: [false; 4],
         },
     ];
     Topology::new(v, e, &b, "t").unwrap()

@@ -47,7 +47,7 @@ pub const FLOOR: f64 = 100.0;
 /// The grids from the transfinite and the scrambled start must agree to this many times the
 /// Picard tolerance (max norm, relative to the diameter): each is converged to the tolerance
 /// by the a-posteriori estimate of [`crate::elliptic::picard`], which is not a bound. (A
-/// volume with a wall spacing is defined only to the tolerance of its intermediate solves,
+/// block or volume with a wall spacing is defined only to the tolerance of its intermediate solves,
 /// [`crate::elliptic::wall::LOOSE_TOLERANCE`], if that is larger.)
 pub const START_LIMIT: f64 = 10.0;
 

@@ -8,7 +8,7 @@ use crate::algebraic::transfinite3d;
 use crate::algebraic::transform::transfinite;
 use crate::case::volume::{volume_place, wall_face};
 use crate::case::{BlockKind, LoadedCase};
-use crate::elliptic::orthogonal::grid_block_with;
+use crate::elliptic::orthogonal::{grid_block_sides, Sides};
 use crate::elliptic::orthogonal3d::grid_volume_corrected;
 use crate::elliptic::periodic;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
@@ -59,8 +59,8 @@ pub struct StartRun {
     pub picard: Option<PicardInfo>,
     /// Why the solve failed.
     pub failure: Option<String>,
-    /// The tolerance the grids are defined to: the Picard tolerance, or for a volume with a
-    /// wall spacing that of its intermediate solves if larger
+    /// The tolerance the grids are defined to: the Picard tolerance, or for a block or volume
+    /// with a wall spacing that of its intermediate solves if larger
     /// ([`crate::elliptic::wall::LOOSE_TOLERANCE`]).
     pub tolerance: f64,
 }
@@ -142,7 +142,7 @@ type Unit<T> = (usize, usize, Solve<T>);
 /// A 2D unit (block or group) from the scrambled transfinite start of its boundary.
 fn start_2d<const D: usize>(
     b: &Boundary2<D>,
-    orth: [bool; 4],
+    sides: Sides,
     periodic: bool,
     case: &LoadedCase,
     seed: u64,
@@ -155,6 +155,7 @@ fn start_2d<const D: usize>(
         let mut start = scrambled(&periodic_start(b), seed);
         close_seam(&mut start);
         let (cells, bad) = ((start.ni() - 1) * (start.nj() - 1), folded(&start));
+        let orth = sides.orthogonal;
         let r = periodic::grid_block(b, Some(start), orth, spec.control, &spec.picard, place);
         return Ok((cells, bad, solved(r.map(|r| (r.grid, r.picard)))?));
     }
@@ -162,16 +163,26 @@ fn start_2d<const D: usize>(
     let cells = (start.ni() - 1) * (start.nj() - 1);
     let bad = folded(&start);
     let mut solver = linear(case)?;
-    let r = grid_block_with(
+    let r = grid_block_sides(
         b,
         Some(start),
-        orth,
+        sides,
         spec.control,
         solver.as_mut(),
         &spec.picard,
         place,
     );
     Ok((cells, bad, solved(r.map(|r| (r.grid, r.picard)))?))
+}
+
+/// The tolerance a 2D grid is defined to: with a wall spacing that of the correction's
+/// intermediate solves, if larger (as for volumes).
+fn wall_tolerance(tol: f64, sides: Sides) -> f64 {
+    if sides.wall.contains(&true) {
+        tol.max(LOOSE_TOLERANCE)
+    } else {
+        tol
+    }
 }
 
 /// A solve's failure as a property (the start grid made it fail), other errors as errors.
@@ -211,14 +222,17 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
             let place = format!("{file}: blocks {} (scrambled start)", g.name);
             let members: Vec<usize> = g.pieces.iter().map(|p| p.block).collect();
             let lists = case.group_points(&g)?;
+            let sides = Sides {
+                orthogonal: g.orthogonal,
+                wall: g.wall,
+            };
             let (cells, bad, r) = match case.case.blocks[members[0]].kind {
                 BlockKind::Minimal => {
                     let pts = lists.map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
                     let bnd = Boundary2::new(pts, &place)?;
-                    let (c, f, r) =
-                        start_2d(&bnd, g.orthogonal, g.periodic, case, seed, &place, |s| {
-                            quality_surface(s).folded_cells
-                        })?;
+                    let (c, f, r) = start_2d(&bnd, sides, g.periodic, case, seed, &place, |s| {
+                        quality_surface(s).folded_cells
+                    })?;
                     let cut = |x: Grid2<3>| {
                         let pieces = g.pieces.iter();
                         pieces.map(|p| Block::Surface(p.cut(&x))).collect()
@@ -227,10 +241,9 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 }
                 _ => {
                     let bnd = case.planar_from(lists, &place)?;
-                    let (c, f, r) =
-                        start_2d(&bnd, g.orthogonal, g.periodic, case, seed, &place, |s| {
-                            quality2d(s).folded_cells
-                        })?;
+                    let (c, f, r) = start_2d(&bnd, sides, g.periodic, case, seed, &place, |s| {
+                        quality2d(s).folded_cells
+                    })?;
                     let cut = |x: Grid2<2>| {
                         let pieces = g.pieces.iter();
                         pieces.map(|p| Block::Planar(p.cut(&x))).collect()
@@ -238,30 +251,30 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                     (c, f, r.map(|(x, p)| (cut(x), p)))
                 }
             };
-            out.push(unit(members, cells, bad, r, tol));
+            out.push(unit(members, cells, bad, r, wall_tolerance(tol, sides)));
         }
     } else {
         for k in 0..nblocks {
             let place = format!("{} (scrambled start)", case.block_place(k));
-            let orth = case.block_orthogonal(k)?;
+            let sides = case.block_sides(k)?;
             let (cells, bad, r) = match case.case.blocks[k].kind {
                 BlockKind::Surface => continue,
                 BlockKind::Planar => {
                     let b = case.planar_boundary(k)?;
-                    let (c, f, r) = start_2d(&b, orth, false, case, seed, &place, |s| {
+                    let (c, f, r) = start_2d(&b, sides, false, case, seed, &place, |s| {
                         quality2d(s).folded_cells
                     })?;
                     (c, f, r.map(|(x, p)| (vec![Block::Planar(x)], p)))
                 }
                 BlockKind::Minimal => {
                     let b = case.minimal_boundary(k)?;
-                    let (c, f, r) = start_2d(&b, orth, false, case, seed, &place, |s| {
+                    let (c, f, r) = start_2d(&b, sides, false, case, seed, &place, |s| {
                         quality_surface(s).folded_cells
                     })?;
                     (c, f, r.map(|(x, p)| (vec![Block::Surface(x)], p)))
                 }
             };
-            out.push(unit(vec![k], cells, bad, r, tol));
+            out.push(unit(vec![k], cells, bad, r, wall_tolerance(tol, sides)));
         }
     }
     for k in 0..case.case.volumes.len() {

@@ -1,0 +1,156 @@
+use super::*;
+use crate::algebraic::ControlKind;
+use crate::elliptic::orthogonal::{grid_block_sides, Sides};
+use crate::grid::boundary::Boundary2;
+use crate::solve::direct::DirectLu;
+
+/// `n` nodes from 0 to `len`, geometric with first step `h`.
+fn geometric(n: usize, len: f64, h: f64) -> Vec<f64> {
+    let sum = |r: f64| (0..n - 1).map(|k| h * r.powi(k as i32)).sum::<f64>();
+    let (mut lo, mut hi) = (1.0, 2.0);
+    while sum(hi) < len {
+        hi *= 2.0;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if sum(mid) < len {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let r = 0.5 * (lo + hi);
+    let mut out = vec![0.0];
+    for k in 0..n - 1 {
+        out.push(out[k] + h * r.powi(k as i32));
+    }
+    let last = out[n - 1];
+    out.iter().map(|x| x * len / last).collect()
+}
+
+/// A block from its four sides (E1, E2 from E3 to E4; E3, E4 from E1 to E2).
+fn block(
+    e1: Vec<[f64; 2]>,
+    e2: Vec<[f64; 2]>,
+    e3: Vec<[f64; 2]>,
+    e4: Vec<[f64; 2]>,
+) -> Boundary2<2> {
+    Boundary2::new([e1, e2, e3, e4], "test").unwrap()
+}
+
+fn solve(b: &Boundary2<2>, orthogonal: [bool; 4], wall: [bool; 4]) -> Grid2<2> {
+    let sides = Sides { orthogonal, wall };
+    let r = grid_block_sides(
+        b,
+        None,
+        sides,
+        ControlKind::Algebraic,
+        &mut DirectLu::new(),
+        &PicardParams::default(),
+        "test",
+    )
+    .unwrap();
+    assert!(r.picard.converged);
+    assert_eq!(quality_any(&r.grid).folded_cells, 0);
+    r.grid
+}
+
+const E3: [bool; 4] = [false, false, true, false];
+
+#[test]
+fn a_rectangle_with_equal_side_distributions_is_left_as_it_is() {
+    // The tensor grid is the exact discrete solution and every column already has the side
+    // edges' profile: no pass runs and the grid is the tensor grid.
+    let xs: Vec<f64> = (0..13).map(|k| 2.0 * (k as f64 / 12.0).powf(1.3)).collect();
+    let ys = geometric(11, 1.0, 1e-3);
+    let exact = Grid2::<2>::from_fn(13, 11, |i, j| [xs[i], ys[j]]);
+    let b = Boundary2::from_grid(&exact, "r").unwrap();
+    let (g, history) = hold_wall_spacing(
+        exact.clone(),
+        crate::algebraic::transform::straight_line(
+            &crate::grid::arclength::EdgeFunctions::arclength(&b),
+        ),
+        E3,
+        &mut DirectLu::new(),
+        &PicardParams::default(),
+        "r",
+    )
+    .unwrap();
+    assert!(history.is_none());
+    assert_eq!(g, exact);
+    let g = solve(&b, [false; 4], E3);
+    for c in 0..2 {
+        for (u, v) in g.coord(c).iter().zip(exact.coord(c)) {
+            assert!((u - v).abs() < 1e-12, "{u} vs {v}");
+        }
+    }
+    let w = wall_spacing(&g, Edge::E3);
+    assert_eq!(w.nodes, 11);
+    assert!(
+        (w.ratio_min - 1.0).abs() < 1e-9 && (w.ratio_max - 1.0).abs() < 1e-9,
+        "{w:?}"
+    );
+}
+
+#[test]
+fn first_spacings_follow_the_geometric_interpolation_of_the_side_edges() {
+    // A unit square whose sides start with 1e-4 (x = 0) and 1e-3 (x = 1): the straight-line
+    // grid interpolates the side distributions linearly (5.5e-4 at x = 1/2); the wall asks for
+    // h(x) = 1e-4^(1-x) 1e-3^x (3.2e-4 there).
+    let n = 33;
+    let ya = geometric(n, 1.0, 1e-4);
+    let yb = geometric(n, 1.0, 1e-3);
+    let xs: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
+    let b = block(
+        ya.iter().map(|&y| [0.0, y]).collect(),
+        yb.iter().map(|&y| [1.0, y]).collect(),
+        xs.iter().map(|&x| [x, 0.0]).collect(),
+        xs.iter().map(|&x| [x, 1.0]).collect(),
+    );
+    let target = |x: f64| 1e-4f64.powf(1.0 - x) * 1e-3f64.powf(x);
+    let err = |g: &Grid2<2>| {
+        (1..n - 1)
+            .map(|i| ((g.point(i, 1)[1] - g.point(i, 0)[1]) / target(xs[i]) - 1.0).abs())
+            .fold(0.0, f64::max)
+    };
+    let plain = solve(&b, [false; 4], [false; 4]);
+    let held = solve(&b, [false; 4], E3);
+    assert!(err(&plain) > 0.5, "uncorrected {}", err(&plain));
+    assert!(err(&held) < 0.01, "held {}", err(&held));
+    let w = wall_spacing(&held, Edge::E3);
+    assert!(w.ratio_min > 0.99 && w.ratio_max < 1.01, "{w:?}");
+    // Towards the opposite edge the correction fades out: the top rows are the plain grid's.
+    let top = (0..n)
+        .map(|i| (held.point(i, n - 2)[1] - plain.point(i, n - 2)[1]).abs())
+        .fold(0.0, f64::max);
+    assert!(top < 1e-3, "{top}");
+}
+
+#[test]
+fn a_curved_orthogonal_wall_keeps_its_spacing_and_its_orthogonality() {
+    // A channel over a bump y = 0.25 sin²(πx): the elliptic map stretches the first cells over
+    // the bump and squeezes them in the dips; the held spacing is the sides' 1e-3 everywhere,
+    // with the lines still leaving the wall at right angles.
+    let (ni, nj) = (49, 33);
+    let ys = geometric(nj, 1.0, 1e-3);
+    let xs: Vec<f64> = (0..ni).map(|k| k as f64 / (ni - 1) as f64).collect();
+    let bump = |x: f64| 0.25 * (std::f64::consts::PI * x).sin().powi(2);
+    let b = block(
+        ys.iter().map(|&y| [0.0, y]).collect(),
+        ys.iter().map(|&y| [1.0, y]).collect(),
+        xs.iter().map(|&x| [x, bump(x)]).collect(),
+        xs.iter().map(|&x| [x, 1.0]).collect(),
+    );
+    let orth = E3;
+    let plain = solve(&b, orth, [false; 4]);
+    let held = solve(&b, orth, E3);
+    let (p, h) = (
+        wall_spacing(&plain, Edge::E3),
+        wall_spacing(&held, Edge::E3),
+    );
+    assert!(p.ratio_min < 0.9 || p.ratio_max > 1.1, "uncorrected {p:?}");
+    assert!(h.ratio_min > 0.99 && h.ratio_max < 1.01, "held {h:?}");
+    let q = quality_any(&held);
+    let wall = &q.orthogonality[2];
+    assert!(wall.max_deg < 1.0, "{wall:?}");
+}

@@ -1,0 +1,160 @@
+//! Wall spacing held along edges of 2D blocks (`wall`, `src/elliptic/wall2d.rs`) through the
+//! command line: the RAE2822 C-grid's airfoil at 1e-5 chord everywhere (against 4.7e-6 …
+//! 4.4e-5 without), the single-block bump channel, the report, and the input errors.
+
+mod common;
+use common::*;
+use ellipgrid::io::plot3d::read_plot3d;
+use ellipgrid::io::Block;
+use serde_json::Value;
+use std::fs;
+use std::path::Path;
+
+/// Runs `case` in `dir` with a report; the report.
+fn run(dir: &Path, case: &str) -> Value {
+    fs::write(dir.join("c.toml"), case).unwrap();
+    let o = ellipgrid(
+        dir,
+        &["run", "c.toml", "-o", "g.x", "--report", "r.json", "-q"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    serde_json::from_str(&fs::read_to_string(dir.join("r.json")).unwrap()).unwrap()
+}
+
+/// First spacings (smallest, largest) off side j = 0 of block `b` of the grid in `dir`, over
+/// its interior wall nodes.
+fn first_spacings(dir: &Path, b: usize) -> (f64, f64) {
+    let grid = read_plot3d(&dir.join("g.x")).unwrap();
+    let Block::Planar(g) = &grid.blocks[b] else {
+        panic!("a planar block")
+    };
+    (1..g.ni() - 1)
+        .map(|i| {
+            let (p, q) = (g.point(i, 0), g.point(i, 1));
+            ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt()
+        })
+        .fold((f64::INFINITY, 0.0), |(lo, hi), h| (lo.min(h), hi.max(h)))
+}
+
+fn rae2822() -> String {
+    fs::read_to_string(root().join("examples/rae2822_cgrid.toml"))
+        .unwrap()
+        .replace(
+            "../data/rae2822.dat",
+            root().join("data/rae2822.dat").to_str().unwrap(),
+        )
+}
+
+#[test]
+fn the_rae2822_c_grid_holds_its_wall_spacing_along_the_whole_airfoil() {
+    let case = rae2822();
+    assert_eq!(case.matches("\nwall = true\n").count(), 2);
+    let held = tempfile::tempdir().unwrap();
+    let r = run(held.path(), &case);
+    let plain = tempfile::tempdir().unwrap();
+    run(plain.path(), &case.replace("\nwall = true\n", "\n"));
+    for (b, name) in [(0, "upper"), (1, "lower")] {
+        let block = &r["blocks"][b];
+        assert_eq!(block["name"], name);
+        let w = &block["wall"][0];
+        assert_eq!(w["edge"], "E3");
+        assert_eq!(w["nodes"], 127);
+        let (lo, hi) = (
+            w["ratio_min"].as_f64().unwrap(),
+            w["ratio_max"].as_f64().unwrap(),
+        );
+        assert!(lo > 0.995 && hi < 1.005, "{name}: {lo} … {hi}");
+        let (a, z) = first_spacings(held.path(), b);
+        assert!(a > 0.995e-5 && z < 1.005e-5, "{name}: {a} … {z}");
+        // Without `wall` the spacing is 1e-5 only next to the cuts.
+        let (a, z) = first_spacings(plain.path(), b);
+        assert!(a < 0.9e-5 || z > 2e-5, "{name} without wall: {a} … {z}");
+        assert_eq!(block["quality"]["folded_cells"], 0);
+        assert!(block["picard"]["converged"].as_bool().unwrap());
+    }
+    // The wake blocks hold nothing and say so.
+    assert!(r["blocks"][2].get("wall").is_none());
+    // The grid lines cross the cuts from the trailing edge within a few degrees.
+    for f in r["interfaces"].as_array().unwrap() {
+        let kink = f["kink_mean_deg"].as_f64().unwrap();
+        assert!(kink < 4.5, "{}: mean kink {kink}", f["edge"]);
+    }
+}
+
+#[test]
+fn a_single_block_holds_its_wall_spacing_over_a_bump() {
+    // The bump channel of examples/airfoil_wall.toml at 97 x 33 nodes.
+    let ex = fs::read_to_string(root().join("examples/airfoil_wall.toml")).unwrap();
+    assert!(ex.contains("wall = \"E3\""));
+    let small = ex
+        .replace("ni = 385", "ni = 97")
+        .replace("nj = 65", "nj = 33");
+    let d = tempfile::tempdir().unwrap();
+    let r = run(d.path(), &small);
+    let w = &r["blocks"][0]["wall"][0];
+    let (lo, hi) = (
+        w["ratio_min"].as_f64().unwrap(),
+        w["ratio_max"].as_f64().unwrap(),
+    );
+    assert!(lo > 0.99 && hi < 1.01, "{lo} … {hi}");
+    let (a, z) = first_spacings(d.path(), 0);
+    assert!(a > 0.99e-5 && z < 1.01e-5, "{a} … {z}");
+    // The console says it too.
+    let o = ellipgrid(d.path(), &["run", "c.toml", "-o", "g.x"]);
+    let t = text(&o);
+    assert!(t.contains("wall E3: first spacing"), "{t}");
+}
+
+#[test]
+fn wall_input_errors_exit_2_naming_the_block_and_the_side() {
+    // An unknown edge in a block's `wall`.
+    rejects(
+        &square_case(9, 9).replace("nj = 9\n", "nj = 9\nwall = \"E5\"\n"),
+        &["block 'b'", "wall", "'E5'"],
+    );
+    // A wall on a surface block.
+    let surface = fs::read_to_string(root().join("examples/wing_pylon.toml"))
+        .unwrap()
+        .replacen("kind = \"surface\"", "kind = \"surface\"\nwall = \"E3\"", 1)
+        .replace("../data/", &format!("{}/data/", root().display()));
+    rejects(&surface, &["block 'wing_pylon'", "wall", "surface blocks"]);
+    // A side that is a chain of a wall edge and an edge that is not.
+    let chain = "\
+[[vertex]]\nname = \"a\"\nat = [0, 0]\n[[vertex]]\nname = \"m\"\nat = [1, 0]\n\
+[[vertex]]\nname = \"b\"\nat = [2, 0]\n[[vertex]]\nname = \"c\"\nat = [2, 1]\n\
+[[vertex]]\nname = \"d\"\nat = [0, 1]\n\
+[[edge]]\nname = \"w\"\nfrom = \"a\"\nto = \"m\"\nn = 5\nwall = true\n\
+[[edge]]\nname = \"x\"\nfrom = \"m\"\nto = \"b\"\nn = 5\n\
+[[edge]]\nname = \"top\"\nfrom = \"d\"\nto = \"c\"\nn = 9\n\
+[[edge]]\nname = \"left\"\nfrom = \"a\"\nto = \"d\"\nn = 5\n\
+[[edge]]\nname = \"right\"\nfrom = \"b\"\nto = \"c\"\nn = 5\n\
+[[block]]\nname = \"blk\"\nE1 = \"left\"\nE2 = \"right\"\nE3 = [\"w\", \"x\"]\nE4 = \"top\"\n";
+    rejects(chain, &["block 'blk'", "E3", "'w'", "'x'", "wall"]);
+    // The same with both edges walls runs.
+    let d = tempfile::tempdir().unwrap();
+    let both = chain.replace(
+        "n = 5\n\n[[edge]]\nname = \"top\"",
+        "n = 5\nwall = true\n[[edge]]\nname = \"top\"",
+    );
+    let both = both.replace(
+        "name = \"x\"\nfrom = \"m\"\nto = \"b\"\nn = 5\n",
+        "name = \"x\"\nfrom = \"m\"\nto = \"b\"\nn = 5\nwall = true\n",
+    );
+    let r = run(d.path(), &both);
+    assert_eq!(r["blocks"][0]["wall"][0]["edge"], "E3");
+    // A wall on a periodic block (a ring of floating edges).
+    let ring = fs::read_to_string(root().join("examples/naca0012_oneblock.toml"))
+        .unwrap()
+        .replace("family = \"airfoil\"", "wall = true\nfamily = \"airfoil\"")
+        .replace("../data/", &format!("{}/data/", root().display()));
+    rejects(&ring, &["periodic", "wall"]);
+    // An edge marked `wall` in a volume topology.
+    let vol = fs::read_to_string(root().join("examples/volume_topology_lid.toml")).unwrap();
+    let vol = vol.replacen(
+        "name = \"bx0\"\nfrom = \"b00\"\nto = \"b10\"\nn = 17\n",
+        "name = \"bx0\"\nfrom = \"b00\"\nto = \"b10\"\nn = 17\nwall = true\n",
+        1,
+    );
+    assert!(vol.contains("wall = true"));
+    rejects(&vol, &["edge 'bx0'", "wall", "[[volume]]"]);
+}
