@@ -115,17 +115,22 @@ fn best_position(c: &[([f64; 2], f64); 12], now: [f64; 2], reach: f64) -> [f64; 
     best.1
 }
 
+/// Sweeps without fewer folded cells than before after which [`untangle`] gives up.
+const STALL: usize = 15;
+
 /// Moves interior nodes within two cells of a folded cell to their max-min positions, sweep
-/// after sweep, until no cell is folded (by [`folded_cells`] with `tol`) or `max_sweeps`
-/// sweeps are done. Returns the number of folded cells left.
+/// after sweep, until no cell is folded (by [`folded_cells`] with `tol`), `max_sweeps`
+/// sweeps are done, or [`STALL`] sweeps in a row did not lower the fewest folded cells yet.
+/// Returns the number of folded cells left.
 pub fn untangle(g: &mut Grid2<2>, tol: f64, max_sweeps: usize) -> usize {
     let (ni, nj) = (g.ni(), g.nj());
     let mut bad = folded_cells(g, tol);
     if ni < 3 || nj < 3 {
         return bad.len();
     }
+    let (mut fewest, mut since) = (bad.len(), 0);
     for _ in 0..max_sweeps {
-        if bad.is_empty() {
+        if bad.is_empty() || since >= STALL {
             break;
         }
         let mut free = vec![false; ni * nj];
@@ -158,6 +163,11 @@ pub fn untangle(g: &mut Grid2<2>, tol: f64, max_sweeps: usize) -> usize {
             }
         }
         bad = folded_cells(g, tol);
+        if bad.len() < fewest {
+            (fewest, since) = (bad.len(), 0);
+        } else {
+            since += 1;
+        }
     }
     bad.len()
 }
