@@ -577,10 +577,7 @@ fn an_l_shaped_face_whose_grids_fold_at_its_reentrant_vertex_is_untangled() {
         });
         assert!(inside, "{n}: a node outside the L");
         let (a, h) = (area(grid), 148.0 / (n - 1) as f64);
-        assert!(
-            (a - 20185.0).abs() <= h * h / 4.0,
-            "{n}: area {a}"
-        );
+        assert!((a - 20185.0).abs() <= h * h / 4.0, "{n}: area {a}");
     }
     // The CLI grids it (exit 0) with the default 65 × 49 nodes and writes the grid.
     let dir = tempfile::tempdir().unwrap();
@@ -598,6 +595,10 @@ fn an_l_shaped_face_whose_grids_fold_at_its_reentrant_vertex_is_untangled() {
         ],
     );
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(text(&o).contains("folded cells                       0"), "{}", text(&o));
+    assert!(
+        text(&o).contains("folded cells                       0"),
+        "{}",
+        text(&o)
+    );
     assert!(dir.path().join("l.x").exists());
 }

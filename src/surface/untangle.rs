@@ -102,7 +102,8 @@ fn best_position(c: &[([f64; 2], f64); 12], now: [f64; 2], reach: f64) -> [f64; 
                     (a[2] * b[1] - a[1] * b[2]) / det,
                     (a[0] * b[2] - a[2] * b[0]) / det,
                 ];
-                if !((p[0] - now[0]).hypot(p[1] - now[1]) <= reach) {
+                let d = (p[0] - now[0]).hypot(p[1] - now[1]);
+                if d.is_nan() || d > reach {
                     continue;
                 }
                 let v = worst(c, p);
@@ -187,7 +188,10 @@ mod tests {
         assert!(!folded_cells(&g, 1e-9).is_empty());
         assert_eq!(untangle(&mut g, 1e-9, 20), 0);
         let (x, y) = (g.coord(0)[c], g.coord(1)[c]);
-        assert!((0.25..0.75).contains(&x) && (0.25..0.75).contains(&y), "{x} {y}");
+        assert!(
+            (0.25..0.75).contains(&x) && (0.25..0.75).contains(&y),
+            "{x} {y}"
+        );
     }
 
     /// A square whose boundary nodes are fixed and whose interior nodes all start at one
