@@ -121,7 +121,7 @@ const STALL: usize = 15;
 
 /// Moves interior nodes within two cells of a folded cell to their max-min positions, sweep
 /// after sweep, until no cell is folded (by [`folded_cells`] with `tol`), `max_sweeps`
-/// sweeps are done, or [`STALL`] sweeps in a row did not lower the fewest folded cells yet.
+/// sweeps are done, or 15 sweeps in a row did not lower the fewest folded cells yet.
 /// Returns the number of folded cells left.
 pub fn untangle(g: &mut Grid2<2>, tol: f64, max_sweeps: usize) -> usize {
     let (ni, nj) = (g.ni(), g.nj());
