@@ -549,3 +549,56 @@ fn edges_within_three_uncertainties_of_the_file_are_on_the_face() {
     );
     assert!(o.status.success(), "{}", text(&o));
 }
+
+#[test]
+fn an_l_shaped_face_whose_grids_fold_at_its_reentrant_vertex_is_untangled() {
+    // plane_lshape.step (data/step/make_lshape.py): the reentrant vertex (43, 80) lies inside
+    // a side of the block face; the discrete Winslow grid of the (u, v) parametrization and
+    // the Section 4 grid on top fold in the cells next to it at every resolution (1, 2, 4
+    // cells at 17, 33, 65 nodes), and were refused. Untangled, they are fold-free and the
+    // nodes lie on the plane, inside the L. Four of the five convex vertices are the
+    // corners; the fifth, (0, 80), and the reentrant one lie inside the side (0, 105) →
+    // (0, 80) → (43, 80) → (43, 0), whose nodes are at equal arclengths h = 148 / (n − 1):
+    // where a vertex is not a node the boundary's chord cuts a triangle of at most h² / 8
+    // off the L (at the convex vertex) or adds one (at the reentrant vertex).
+    for n in [17, 33, 65] {
+        let g = grid("plane_lshape.step", 1, n);
+        let grid = &g.result.grid;
+        assert!(unfolded(grid), "{n}: folded");
+        assert!(g.uv_picard.is_some(), "{n}: not through the (u, v) grid");
+        let off = grid.coord(2).iter().fold(0.0f64, |m, z| m.max(z.abs()));
+        assert!(off < 1e-11, "{n}: a node {off:e} off the plane");
+        let inside = (0..grid.len()).all(|p| {
+            let [x, y, _] = node(grid, p);
+            let eps = 1e-9;
+            (-eps..=225.0 + eps).contains(&x)
+                && (-eps..=105.0 + eps).contains(&y)
+                && !(x < 43.0 - eps && y < 80.0 - eps)
+        });
+        assert!(inside, "{n}: a node outside the L");
+        let (a, h) = (area(grid), 148.0 / (n - 1) as f64);
+        assert!((a - 20185.0).abs() <= h * h / 4.0, "{n}: area {a}");
+    }
+    // The CLI grids it (exit 0) with the default 65 × 49 nodes and writes the grid.
+    let dir = tempfile::tempdir().unwrap();
+    let step = file("plane_lshape.step");
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step",
+            "grid",
+            step.to_str().unwrap(),
+            "--face",
+            "1",
+            "-o",
+            "l.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(
+        text(&o).contains("folded cells                       0"),
+        "{}",
+        text(&o)
+    );
+    assert!(dir.path().join("l.x").exists());
+}

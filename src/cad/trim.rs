@@ -401,14 +401,35 @@ impl<'a> FaceLoop<'a> {
         }
     }
 
-    /// Whether the loop bends outwards (is concave) at a point inside an edge, from the
-    /// (u, v) samples next to it.
+    /// Whether the loop bends outwards (is concave) at a point inside an edge: the turn of
+    /// its (u, v) at the point itself and at arclength ±1/(8 NS) of the edge (projected from
+    /// the samples' (u, v)), else from the (u, v) samples next to it.
     fn bends_out(&self, p: LoopPoint, ccw: bool) -> bool {
-        let uv = &self.edges[p.edge].uv;
-        let i = ((p.sigma * NS as f64).round() as usize).clamp(1, NS - 1);
+        let e = &self.edges[p.edge];
         let s = self.scale;
-        let da = [0, 1].map(|c| (uv[i][c] - uv[i - 1][c]) * s[c]);
-        let db = [0, 1].map(|c| (uv[i + 1][c] - uv[i][c]) * s[c]);
+        let h = 1.0 / (8 * NS) as f64;
+        let near = |sigma: f64| {
+            let x = e.curve.point(e.map.param_at(sigma));
+            let pos = sigma * NS as f64;
+            let i = (pos.floor() as usize).min(NS - 1);
+            let w = pos - i as f64;
+            let hint = [0, 1].map(|c| (1.0 - w) * e.uv[i][c] + w * e.uv[i + 1][c]);
+            project_within(self.surface, x, (hint[0], hint[1]), self.bounds)
+                .map(|(u, v)| unwrap([u, v], hint, self.periods))
+        };
+        let local = if p.sigma > h && p.sigma < 1.0 - h {
+            match (near(p.sigma - h), near(p.sigma), near(p.sigma + h)) {
+                (Some(a), Some(b), Some(c)) => Some((a, b, c)),
+                _ => None,
+            }
+        } else {
+            None
+        };
+        let uv = &e.uv;
+        let i = ((p.sigma * NS as f64).round() as usize).clamp(1, NS - 1);
+        let (a, b, c) = local.unwrap_or((uv[i - 1], uv[i], uv[i + 1]));
+        let da = [0, 1].map(|k| (b[k] - a[k]) * s[k]);
+        let db = [0, 1].map(|k| (c[k] - b[k]) * s[k]);
         let cross = da[0] * db[1] - da[1] * db[0];
         let tiny = 1e-9 * (da[0].hypot(da[1]) * db[0].hypot(db[1]));
         if ccw {
@@ -460,17 +481,29 @@ impl<'a> FaceLoop<'a> {
         while pts.len() < want {
             // Split the longest stretch between consecutive points near its middle, at a point
             // where the loop does not bend outwards (a corner on a concave curve folds its
-            // corner cell): the nearest such point to the middle within its middle half.
+            // corner cell, whose angle is then above 180°): the nearest such point to the
+            // middle within its middle half; if the longest stretch bends outwards all along
+            // its middle half, the next longest that does not (a three-sided face whose
+            // longest side is concave takes its fourth corner on a straight or convex side).
             let m = pts.len();
-            let (k, len) = (0..m)
+            let mut stretches: Vec<(usize, f64)> = (0..m)
                 .map(|k| (k, self.chain_length(pts[k], pts[(k + 1) % m])))
-                .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
-            let at = |t: f64| self.advance(pts[k], t * len);
-            let mid = (0..=10)
-                .map(|d| 0.5 + if d % 2 == 0 { 0.025 } else { -0.025 } * d as f64)
-                .map(at)
-                .find(|p| min_turn.is_none() || !self.bends_out(*p, ccw))
-                .unwrap_or_else(|| at(0.5));
+                .collect();
+            stretches.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+            let at = |(k, len): (usize, f64), t: f64| self.advance(pts[k], t * len);
+            let fractions =
+                (0..=10).map(|d| 0.5 + if d % 2 == 0 { 0.025 } else { -0.025 } * d as f64);
+            let (k, mid) = stretches
+                .iter()
+                .take(if min_turn.is_some() { m } else { 1 })
+                .find_map(|&st| {
+                    fractions
+                        .clone()
+                        .map(|t| at(st, t))
+                        .find(|p| min_turn.is_none() || !self.bends_out(*p, ccw))
+                        .map(|p| (st.0, p))
+                })
+                .unwrap_or_else(|| (stretches[0].0, at(stretches[0], 0.5)));
             pts.insert(k + 1, mid);
         }
         // Rotate so that the first corner is the earliest in loop order, or the pole.

@@ -21,6 +21,7 @@ use crate::grid::boundary::Boundary2;
 use crate::grid::{Edge, Grid2};
 use crate::solve::LinearSolver;
 use crate::surface::pipeline::{grid_surface_orthogonal, SurfaceResult};
+use crate::surface::untangle::{folded_cells, untangle};
 use crate::{Error, Result};
 use ellipgrid_geometry::{HermiteSurface, Surface, SurfaceLocator, SurfacePoint, Vec3};
 
@@ -238,10 +239,51 @@ pub fn grid_face_composite_refined(
         *q = [p.x, p.y];
     }
     set_boundary(&mut result, points, uv);
+    untangle_on(surface, &mut result, scale);
     Ok(FaceResult {
         result,
         uv_picard: Some(picard),
     })
+}
+
+/// The final grid's nodes untangled in the surface's (u, v) plane scaled by `scale` where
+/// that grid folds (next to a reentrant vertex of the trim the discrete Laplace–Beltrami
+/// map and the straight-line target grid can fold as the discrete Winslow grid does); moved
+/// nodes are put back on the surface. Boundary nodes never move; a grid that does not fold in
+/// (u, v) is not changed.
+fn untangle_on(surface: &dyn Surface, r: &mut SurfaceResult, scale: [f64; 2]) {
+    let (ni, nj) = (r.grid.ni(), r.grid.nj());
+    // the boundary's turning sense in (u, v): the untangling wants counterclockwise cells
+    let ring: Vec<usize> = (0..ni - 1)
+        .chain((0..nj - 1).map(|j| ni - 1 + ni * j))
+        .chain((1..ni).rev().map(|i| i + ni * (nj - 1)))
+        .chain((1..nj).rev().map(|j| ni * j))
+        .collect();
+    let area: f64 = (0..ring.len())
+        .map(|k| {
+            let (a, b) = (r.uv[ring[k]], r.uv[ring[(k + 1) % ring.len()]]);
+            a[0] * b[1] - a[1] * b[0]
+        })
+        .sum();
+    let flip = if area < 0.0 { -1.0 } else { 1.0 };
+    let at = |n: usize| [r.uv[n][0] * scale[0], flip * r.uv[n][1] * scale[1]];
+    let mut g = Grid2::<2>::from_fn(ni, nj, |i, j| at(i + ni * j));
+    if folded_cells(&g, FLAT).is_empty() {
+        return;
+    }
+    let before = g.clone();
+    untangle(&mut g, FLAT, UNTANGLE_SWEEPS);
+    for n in 0..ni * nj {
+        let (x, y) = (g.coord(0)[n], g.coord(1)[n]);
+        if x != before.coord(0)[n] || y != before.coord(1)[n] {
+            let w = [x / scale[0], flip * y / scale[1]];
+            let x = surface.point(w[0], w[1]);
+            for c in 0..3 {
+                r.grid.coords_mut()[c][n] = x[c];
+            }
+            r.uv[n] = w;
+        }
+    }
 }
 
 /// Boundary nodes exactly at the given points and parameters.
@@ -281,7 +323,10 @@ pub fn parametrization(
     });
     let b = Boundary2::new(scaled, &format!("{place}, (u, v) grid"))?;
     let params = PicardParams::default();
-    let uvg = grid_block::<2>(&b, None, ControlKind::Laplace, solver, &params, place)?;
+    let mut uvg = grid_block::<2>(&b, None, ControlKind::Laplace, solver, &params, place)?;
+    // The discrete Winslow grid may fold next to a reentrant stretch of the trim, where the
+    // continuous map is one-to-one: its nodes there are untangled (module `untangle`).
+    untangle(&mut uvg.grid, FLAT, UNTANGLE_SWEEPS);
     check_unfolded(&uvg.grid, place)?;
     let net: Vec<Vec3> = (0..ni * nj)
         .map(|p| {
@@ -299,35 +344,18 @@ pub fn parametrization(
     Ok((w, uvg.picard))
 }
 
+/// A corner of a (u, v) cell turning clockwise by less than this (|sin|) is flat, not folded:
+/// a corner angle of 180° (a face corner placed inside an edge) to rounding.
+const FLAT: f64 = 1e-9;
+
+/// Sweeps of [`untangle`] over a folded (u, v) grid at most.
+const UNTANGLE_SWEEPS: usize = 100;
+
 /// The (u, v) grid must not fold: every cell's corners turn counterclockwise. A corner
 /// angle of 180° (a face corner placed inside an edge) is degenerate, not folded: rounding
-/// may make it turn clockwise by a hair (|sin| below 1e-9).
+/// may make it turn clockwise by a hair (|sin| below [`FLAT`]).
 fn check_unfolded(g: &Grid2<2>, place: &str) -> Result<()> {
-    let (ni, nj) = (g.ni(), g.nj());
-    let (x, y) = (g.coord(0), g.coord(1));
-    let mut bad = Vec::new();
-    for j in 0..nj - 1 {
-        for i in 0..ni - 1 {
-            let n = [
-                i + ni * j,
-                i + 1 + ni * j,
-                i + 1 + ni * (j + 1),
-                i + ni * (j + 1),
-            ];
-            let folded = (0..4).any(|k| {
-                let (a, b, c) = (n[(k + 3) % 4], n[k], n[(k + 1) % 4]);
-                let (ux, uy) = (x[c] - x[b], y[c] - y[b]);
-                let (vx, vy) = (x[a] - x[b], y[a] - y[b]);
-                let cross = ux * vy - uy * vx;
-                let scale = (ux * ux + uy * uy).sqrt() * (vx * vx + vy * vy).sqrt();
-                cross.partial_cmp(&(-1e-9 * scale)) != Some(std::cmp::Ordering::Greater)
-                    || scale == 0.0
-            });
-            if folded {
-                bad.push((i, j));
-            }
-        }
-    }
+    let bad = folded_cells(g, FLAT);
     if bad.is_empty() {
         return Ok(());
     }

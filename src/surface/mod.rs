@@ -6,3 +6,4 @@
 pub mod face;
 pub mod inversion;
 pub mod pipeline;
+pub mod untangle;

@@ -1,0 +1,213 @@
+//! Untangling of a planar grid whose discrete Winslow solution folds near a reentrant part
+//! of its boundary (a CAD face's (u, v) parametrization, [`super::face`]): the continuous
+//! Winslow map is one-to-one, its discretization on a coarse grid need not be.
+//!
+//! Interior nodes near the folded cells are moved one at a time (Gauss–Seidel order, fixed,
+//! so the result is the same in every run) to the position that maximizes the smallest
+//! corner Jacobian of the cells around them (Freitag & Plassmann's max-min untangling, 2000):
+//! a corner Jacobian J = (c − b) × (a − b) of the corner triangle (a, b, c) is affine in each
+//! of its nodes, so for one free node P the twelve corner Jacobians of its four cells are
+//! affine functions g_k · P + h_k, and max_P min_k is a linear program in (P, t) whose
+//! optimum is a vertex where three of them are equal. Boundary nodes never move.
+
+use crate::grid::Grid2;
+
+/// Cells (i, j) (lower-left node) with a corner Jacobian ≤ −`tol` |a| |b| (the fold test of
+/// the face's parametrization; `tol` lets a corner of 180° to rounding pass), in row order.
+pub fn folded_cells(g: &Grid2<2>, tol: f64) -> Vec<(usize, usize)> {
+    let (ni, nj) = (g.ni(), g.nj());
+    let mut bad = Vec::new();
+    for j in 0..nj - 1 {
+        for i in 0..ni - 1 {
+            if cell_folded(g, i, j, tol) {
+                bad.push((i, j));
+            }
+        }
+    }
+    bad
+}
+
+fn cell_nodes(ni: usize, i: usize, j: usize) -> [usize; 4] {
+    [
+        i + ni * j,
+        i + 1 + ni * j,
+        i + 1 + ni * (j + 1),
+        i + ni * (j + 1),
+    ]
+}
+
+fn cell_folded(g: &Grid2<2>, i: usize, j: usize, tol: f64) -> bool {
+    let (x, y) = (g.coord(0), g.coord(1));
+    let n = cell_nodes(g.ni(), i, j);
+    (0..4).any(|k| {
+        let (a, b, c) = (n[(k + 3) % 4], n[k], n[(k + 1) % 4]);
+        let (ux, uy) = (x[c] - x[b], y[c] - y[b]);
+        let (vx, vy) = (x[a] - x[b], y[a] - y[b]);
+        let cross = ux * vy - uy * vx;
+        let scale = (ux * ux + uy * uy).sqrt() * (vx * vx + vy * vy).sqrt();
+        cross.partial_cmp(&(-tol * scale)) != Some(std::cmp::Ordering::Greater) || scale == 0.0
+    })
+}
+
+/// The affine corner Jacobians g · P + h of the cells around interior node `p` as functions
+/// of its position P: for a corner triangle in cyclic order (P, q, r),
+/// J = P × (q − r) + q × r.
+fn constraints(g: &Grid2<2>, i: usize, j: usize) -> [([f64; 2], f64); 12] {
+    let ni = g.ni();
+    let (x, y) = (g.coord(0), g.coord(1));
+    let p = i + ni * j;
+    let mut out = [([0.0; 2], 0.0); 12];
+    let mut m = 0;
+    for (ci, cj) in [(i - 1, j - 1), (i, j - 1), (i, j), (i - 1, j)] {
+        let n = cell_nodes(ni, ci, cj);
+        let at = n.iter().position(|&q| q == p).expect("node of its cell");
+        // the three corners of this cell that involve p: at p, after p, before p
+        for k in [at, (at + 1) % 4, (at + 3) % 4] {
+            let tri = [n[(k + 3) % 4], n[k], n[(k + 1) % 4]];
+            let s = tri.iter().position(|&q| q == p).expect("p in its corner");
+            let (q, r) = (tri[(s + 1) % 3], tri[(s + 2) % 3]);
+            let w = [x[q] - x[r], y[q] - y[r]];
+            // P × w = Px wy − Py wx
+            out[m] = ([w[1], -w[0]], x[q] * y[r] - y[q] * x[r]);
+            m += 1;
+        }
+    }
+    out
+}
+
+fn worst(c: &[([f64; 2], f64); 12], p: [f64; 2]) -> f64 {
+    c.iter()
+        .map(|(g, h)| g[0] * p[0] + g[1] * p[1] + h)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The max-min position of one node (or its current one if no vertex of the linear program
+/// within `reach` of it is better).
+fn best_position(c: &[([f64; 2], f64); 12], now: [f64; 2], reach: f64) -> [f64; 2] {
+    let mut best = (worst(c, now), now);
+    for k in 0..12 {
+        for l in k + 1..12 {
+            for m in l + 1..12 {
+                let (gk, hk) = c[k];
+                let (gl, hl) = c[l];
+                let (gm, hm) = c[m];
+                let a = [gk[0] - gl[0], gk[1] - gl[1], hl - hk];
+                let b = [gk[0] - gm[0], gk[1] - gm[1], hm - hk];
+                let det = a[0] * b[1] - a[1] * b[0];
+                let size = a[0].hypot(a[1]) * b[0].hypot(b[1]);
+                if det.abs() <= 1e-12 * size || size == 0.0 {
+                    continue;
+                }
+                let p = [
+                    (a[2] * b[1] - a[1] * b[2]) / det,
+                    (a[0] * b[2] - a[2] * b[0]) / det,
+                ];
+                let d = (p[0] - now[0]).hypot(p[1] - now[1]);
+                if d.is_nan() || d > reach {
+                    continue;
+                }
+                let v = worst(c, p);
+                if v > best.0 {
+                    best = (v, p);
+                }
+            }
+        }
+    }
+    best.1
+}
+
+/// Sweeps without fewer folded cells than before after which [`untangle`] gives up.
+const STALL: usize = 15;
+
+/// Moves interior nodes within two cells of a folded cell to their max-min positions, sweep
+/// after sweep, until no cell is folded (by [`folded_cells`] with `tol`), `max_sweeps`
+/// sweeps are done, or 15 sweeps in a row did not lower the fewest folded cells yet.
+/// Returns the number of folded cells left.
+pub fn untangle(g: &mut Grid2<2>, tol: f64, max_sweeps: usize) -> usize {
+    let (ni, nj) = (g.ni(), g.nj());
+    let mut bad = folded_cells(g, tol);
+    if ni < 3 || nj < 3 {
+        return bad.len();
+    }
+    let (mut fewest, mut since) = (bad.len(), 0);
+    for _ in 0..max_sweeps {
+        if bad.is_empty() || since >= STALL {
+            break;
+        }
+        let mut free = vec![false; ni * nj];
+        for &(ci, cj) in &bad {
+            for j in cj.saturating_sub(2)..=(cj + 3).min(nj - 2) {
+                for i in ci.saturating_sub(2)..=(ci + 3).min(ni - 2) {
+                    if i >= 1 && j >= 1 {
+                        free[i + ni * j] = true;
+                    }
+                }
+            }
+        }
+        for j in 1..nj - 1 {
+            for i in 1..ni - 1 {
+                let p = i + ni * j;
+                if !free[p] {
+                    continue;
+                }
+                let c = constraints(g, i, j);
+                let (x, y) = (g.coord(0), g.coord(1));
+                let now = [x[p], y[p]];
+                let reach = [p - 1, p + 1, p - ni, p + ni]
+                    .iter()
+                    .map(|&q| (x[q] - now[0]).hypot(y[q] - now[1]))
+                    .fold(0.0, f64::max);
+                let q = best_position(&c, now, 2.0 * reach);
+                let xy = g.coords_mut();
+                xy[0][p] = q[0];
+                xy[1][p] = q[1];
+            }
+        }
+        bad = folded_cells(g, tol);
+        if bad.len() < fewest {
+            (fewest, since) = (bad.len(), 0);
+        } else {
+            since += 1;
+        }
+    }
+    bad.len()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 5 × 5 grid of the unit square with its centre node thrown outside its cells: four
+    /// folded cells, untangled in one sweep, the centre back inside.
+    #[test]
+    fn a_node_thrown_out_of_its_cells_is_moved_back() {
+        let mut g = Grid2::<2>::from_fn(5, 5, |i, j| [i as f64 / 4.0, j as f64 / 4.0]);
+        let c = 2 + 5 * 2;
+        g.coords_mut()[0][c] = 0.9;
+        g.coords_mut()[1][c] = 0.1;
+        assert!(!folded_cells(&g, 1e-9).is_empty());
+        assert_eq!(untangle(&mut g, 1e-9, 20), 0);
+        let (x, y) = (g.coord(0)[c], g.coord(1)[c]);
+        assert!(
+            (0.25..0.75).contains(&x) && (0.25..0.75).contains(&y),
+            "{x} {y}"
+        );
+    }
+
+    /// A square whose boundary nodes are fixed and whose interior nodes all start at one
+    /// point: most cells folded or degenerate; untangled to none.
+    #[test]
+    fn a_collapsed_interior_is_untangled() {
+        let n = 5;
+        let mut g = Grid2::<2>::from_fn(n, n, |i, j| [i as f64, j as f64]);
+        for j in 1..n - 1 {
+            for i in 1..n - 1 {
+                let p = i + n * j;
+                g.coords_mut()[0][p] = 0.3;
+                g.coords_mut()[1][p] = 0.2;
+            }
+        }
+        assert!(folded_cells(&g, 1e-9).len() > 4);
+        assert_eq!(untangle(&mut g, 1e-9, 50), 0);
+    }
+}
