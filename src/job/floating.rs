@@ -74,7 +74,7 @@ pub fn float(
             ..Default::default()
         })
         .collect();
-    let mut done = solve_all(case, topo, grids, None)?;
+    let mut done = solve_all(case, topo, grids, None, None)?;
     for round in 1..=MAX_ROUNDS {
         let mut vols: Vec<Grid3> = done.iter().map(|d| volume_of(&d.1).clone()).collect();
         let mut worst = 0.0f64;
@@ -89,6 +89,18 @@ pub fn float(
                 for_block(linear, strip.dims()).map_err(|m| Error::input(&place, m))?;
             let refs: Vec<&Grid3> = vols.iter().collect();
             let (x, info) = strip.solve(topo, &refs, &ctrl, solver.as_mut(), params, &place)?;
+            if !info.converged {
+                let [a, b] = strip.volumes().map(|v| topo.volumes[v].name.as_str());
+                return Err(Error::input(
+                    place,
+                    format!(
+                        "interface = \"floating\": the grid system across the face (volumes \
+                         '{a}' and '{b}' as one block) did not converge in round {round} ({} \
+                         Picard steps, residual {:.1e}); make the face fixed",
+                        info.steps, info.final_residual
+                    ),
+                ));
+            }
             let moved = strip.scatter(topo, &x, &mut grids[f], plane.as_ref(), &mut vols);
             let update = moved / diameter(&x);
             h.updates.push(update);
@@ -96,7 +108,8 @@ pub fn float(
             h.seconds += t0.elapsed().as_secs_f64();
             worst = worst.max(update);
         }
-        done = solve_all(case, topo, grids, Some(vols))?;
+        let frozen = done.iter().map(|d| d.3.clone()).collect();
+        done = solve_all(case, topo, grids, Some(vols), Some(frozen))?;
         let converged = worst <= params.tolerance;
         for h in &mut hist {
             h.rounds = round;
@@ -123,20 +136,26 @@ fn solve_all(
     topo: &Topology3,
     grids: &[Grid2<3>],
     starts: Option<Vec<Grid3>>,
+    frozen: Option<Vec<Control3>>,
 ) -> Result<Vec<Solved>> {
     let file = case.path.display().to_string();
     let mut starts: Vec<Option<Grid3>> = match starts {
         Some(s) => s.into_iter().map(Some).collect(),
         None => vec![None; topo.volumes.len()],
     };
+    let mut frozen: Vec<Option<Control3>> = match frozen {
+        Some(f) => f.into_iter().map(Some).collect(),
+        None => vec![None; topo.volumes.len()],
+    };
     starts
         .par_iter_mut()
+        .zip(frozen.par_iter_mut())
         .enumerate()
-        .map(|(v, start)| {
+        .map(|(v, (start, frozen))| {
             let t0 = Instant::now();
             let place = topo.volume_place(&file, v);
             let f = Faces::new(topo.volume_faces(v, grids), &place)?;
-            solve_volume_from(case, v, &f, start.take(), &place, t0)
+            solve_volume_from(case, v, &f, start.take(), frozen.take(), &place, t0)
         })
         .collect()
 }

@@ -8,7 +8,8 @@ use crate::case::spec::VolumeSpec;
 use crate::case::volume::{volume_faces, volume_name, volume_place, wall_face};
 use crate::case::LoadedCase;
 use crate::elliptic::orthogonal3d::{grid_volume_corrected_with, FaceCorrections};
-use crate::elliptic::picard::{PicardInfo, PicardParams};
+use crate::elliptic::picard::{PicardInfo, PicardParams, VolumeResult};
+use crate::elliptic::poisson3d;
 use crate::elliptic::volume::{grid_volume, progress_enabled};
 use crate::elliptic::wall::{check_kind, wall_targets, WallOptions};
 use crate::elliptic::wall_normal::{wall_figure, WallFigure};
@@ -70,17 +71,20 @@ pub(crate) fn solve_volume(
     place: &str,
     t0: Instant,
 ) -> Result<(String, Block, VolumeReport)> {
-    solve_volume_from(case, k, faces, None, place, t0).map(|(name, g, rep, _)| (name, g, rep))
+    solve_volume_from(case, k, faces, None, None, place, t0).map(|(name, g, rep, _)| (name, g, rep))
 }
 
 /// [`solve_volume`] from `start` (its boundary nodes replaced by the faces'), if given, also
 /// returning the control functions the grid solves [86] with (those of the corrected map when
-/// the volume has a wall or orthogonal faces).
+/// the volume has a wall or orthogonal faces). With `frozen` control functions, a start and
+/// corrections, one plain Picard solve with those controls instead of the correction passes
+/// (the corrections are in the controls).
 pub(crate) fn solve_volume_from(
     case: &LoadedCase,
     k: usize,
     faces: &Faces,
     start: Option<Grid3>,
+    frozen: Option<Control3>,
     place: &str,
     t0: Instant,
 ) -> Result<(String, Block, VolumeReport, Control3)> {
@@ -104,7 +108,12 @@ pub(crate) fn solve_volume_from(
     if c.wall.is_some() {
         check_kind(spec.solver.control, place)?;
     }
-    let (r, ctrl) = if c.any() {
+    let frozen = frozen.filter(|_| c.any());
+    let (r, ctrl) = if let (Some(ctrl), Some(mut x)) = (frozen, start.clone()) {
+        faces.apply_to(&mut x);
+        let picard = poisson3d::solve(&mut x, &ctrl, solver.as_mut(), params, place, &mut cb)?;
+        (VolumeResult { grid: x, picard }, ctrl)
+    } else if c.any() {
         grid_volume_corrected_with(faces, &c, start, solver.as_mut(), params, place, &mut cb)?
     } else {
         let r = grid_volume(
