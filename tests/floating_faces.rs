@@ -209,9 +209,9 @@ fn a_displaced_floating_face_floats_back_to_the_tensor_grid() {
             assert!(d < 1e-9, "stretch {stretch}, {name}: {d:e} ({h:?})");
         }
         // The face's interior nodes are the tensor grid's too.
-        for q in 0..nq {
-            for p in 0..np {
-                let want = [1.0, ys[q], zs[p]];
+        for (q, &y) in ys.iter().enumerate().take(nq) {
+            for (p, &z) in zs.iter().enumerate().take(np) {
+                let want = [1.0, y, z];
                 let got = grids[f].point(p, q);
                 for c in 0..3 {
                     assert!((got[c] - want[c]).abs() < 1e-9, "{got:?} vs {want:?}");

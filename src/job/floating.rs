@@ -43,17 +43,16 @@ pub struct FloatingHistory {
 /// A solved volume: name, grid, report, control functions.
 type Solved = (String, Block, VolumeReport, Control3);
 
+/// The volumes (name, grid, report) and, per face of the topology, a floating face's history.
+pub type Floated = (
+    Vec<(String, Block, VolumeReport)>,
+    Vec<Option<FloatingHistory>>,
+);
+
 /// Grids the volumes of `topo` from the face grids `grids`, moving the floating faces' interior
 /// nodes (module docs); `grids` ends with the floated faces. Returns the volumes and, per face
 /// of the topology, the history of a floating one.
-pub fn float(
-    case: &LoadedCase,
-    topo: &Topology3,
-    grids: &mut [Grid2<3>],
-) -> Result<(
-    Vec<(String, Block, VolumeReport)>,
-    Vec<Option<FloatingHistory>>,
-)> {
+pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Result<Floated> {
     let file = case.path.display().to_string();
     let params = &case.case.solver.picard;
     let strips: Vec<Strip> = topo
