@@ -3,7 +3,8 @@
 //! (each floating face by the strip of both its volumes, [`crate::elliptic::floating3d`], the
 //! faces one after the other in the case's order) and volume solves (in parallel, each from
 //! its last grid) follow until the largest move of a face node in a round is below the solve
-//! tolerance, or [`MAX_ROUNDS`] rounds.
+//! tolerance, or [`MAX_ROUNDS`] rounds. A volume's report covers all its solves (seconds,
+//! Picard steps and history summed over the rounds).
 
 use super::volume::{solve_volume_from, VolumeReport};
 use crate::algebraic::control3d::Control3;
@@ -108,7 +109,11 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
             worst = worst.max(update);
         }
         let frozen = done.iter().map(|d| d.3.clone()).collect();
-        done = solve_all(case, topo, grids, Some(vols), Some(frozen))?;
+        let mut next = solve_all(case, topo, grids, Some(vols), Some(frozen))?;
+        for (new, old) in next.iter_mut().zip(&done) {
+            accumulate(&mut new.2, &old.2);
+        }
+        done = next;
         let converged = worst <= params.tolerance;
         for h in &mut hist {
             h.rounds = round;
@@ -157,6 +162,17 @@ fn solve_all(
             solve_volume_from(case, v, &f, start.take(), frozen.take(), &place, t0)
         })
         .collect()
+}
+
+/// A volume's report over all its solves: the seconds and Picard steps of the earlier ones
+/// added, their history before the last solve's.
+fn accumulate(new: &mut VolumeReport, old: &VolumeReport) {
+    new.seconds += old.seconds;
+    let p = &mut new.picard;
+    p.steps += old.picard.steps;
+    let mut history = old.picard.history.clone();
+    history.append(&mut p.history);
+    p.history = history;
 }
 
 fn volume_of(b: &Block) -> &Grid3 {
