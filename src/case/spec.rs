@@ -281,6 +281,10 @@ pub struct FaceSpec {
     /// "inflow", "outflow", "general"; default: guessed from the family name). Boundary
     /// faces only.
     pub bc: Option<String>,
+    /// "fixed" (default: the face is gridded once, alone, and held) or "floating" (a face
+    /// between two volumes whose interior nodes move with the volumes until the grid crosses
+    /// it as smoothly as inside a block; README, "Floating interior faces").
+    pub interface: Option<String>,
     #[serde(rename = "E1")]
     pub e1: Option<SideSpec>,
     #[serde(rename = "E2")]
@@ -295,6 +299,11 @@ impl FaceSpec {
     /// The four sides E1..E4.
     pub fn sides(&self) -> [&Option<SideSpec>; 4] {
         [&self.e1, &self.e2, &self.e3, &self.e4]
+    }
+
+    /// True for `interface = "floating"` (checked by the topology: "fixed" or "floating").
+    pub fn floating(&self) -> bool {
+        self.interface.as_deref() == Some("floating")
     }
 }
 

@@ -120,6 +120,7 @@ pub(super) fn build3(case: &Case, place: &str) -> Result<Option<Topology3>> {
     let bcs = case.faces.iter().map(|f| f.bc.clone()).collect();
     let topo = Topology3::new(faces, families, bcs, &volumes, place)?;
     check_bcs(&topo, place)?;
+    check_floating(case, &topo, place)?;
     for (k, v) in case.volumes.iter().enumerate() {
         let dims = topo.volumes[k].dims;
         for (given, n, what) in [
@@ -139,6 +140,39 @@ pub(super) fn build3(case: &Case, place: &str) -> Result<Option<Topology3>> {
         }
     }
     Ok(Some(topo))
+}
+
+/// Checks the faces' `interface` keys: "fixed" or "floating", floating only on a face that
+/// two volumes share (or one volume twice) and that is gridded alone (not on a surface).
+fn check_floating(case: &Case, topo: &Topology3, place: &str) -> Result<()> {
+    for (f, spec) in case.faces.iter().enumerate() {
+        let at = format!("{place}: face '{}'", spec.name);
+        match spec.interface.as_deref() {
+            None | Some("fixed") => continue,
+            Some("floating") => {}
+            Some(other) => {
+                return Err(Error::input(
+                    at,
+                    format!("interface = '{other}': expected \"fixed\" or \"floating\""),
+                ))
+            }
+        }
+        if topo.uses_of(f).len() != 2 {
+            return Err(Error::input(
+                at,
+                "interface = \"floating\" is for a face between two volumes (or two sides of \
+                 one); this face bounds one volume only",
+            ));
+        }
+        if spec.kind == FaceKind::Surface {
+            return Err(Error::input(
+                at,
+                "interface = \"floating\" moves the face's nodes off any surface: give it \
+                 kind = \"minimal\" or \"tfi\"",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Checks the faces' `bc` keys: a known kind, on boundary faces only, one per family.

@@ -73,15 +73,28 @@ pub fn interfaces(list: &[ellipgrid::job::multiblock::InterfaceReport]) {
 
 /// Prints the smoothness of the grid across every interior face of a volume topology.
 pub fn face_interfaces(list: &[ellipgrid::job::multivolume::FaceInterfaceReport]) {
+    let notes: Vec<String> = list
+        .iter()
+        .map(|f| match &f.floating {
+            Some(h) => format!(
+                "  (floating{}: {} rounds, last move {:.1e}{})",
+                if h.planar { ", planar" } else { "" },
+                h.rounds,
+                h.updates.last().copied().unwrap_or(0.0),
+                if h.converged { "" } else { ", not converged" }
+            ),
+            None => String::new(),
+        })
+        .collect();
     smoothness_table(
         "face",
         "volumes",
-        list.iter().map(|f| {
+        list.iter().zip(&notes).map(|(f, note)| {
             (
                 f.face.as_str(),
                 format!("{} | {}", f.volumes[0], f.volumes[1]),
                 &f.smoothness,
-                "",
+                note.as_str(),
             )
         }),
     );

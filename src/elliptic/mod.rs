@@ -17,8 +17,10 @@
 //! | orthogonality at chosen edges (Section 2.4) | [46–49] | [`orthogonal`] |
 //! | wall spacing and wall-normal lines of volume blocks | — | [`mod@wall`], [`wall_normal`] |
 //! | wall spacing along edges of 2D blocks | — | [`wall2d`] |
+//! | floating interior faces of a volume topology (the strip across a face) | [86]–[88] | [`floating3d`] |
 pub mod anderson;
 pub mod domain;
+pub mod floating3d;
 pub mod harmonic;
 pub(crate) mod jacobian2d;
 pub mod nested;

@@ -64,6 +64,21 @@ pub fn grid_volume_corrected(
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<VolumeResult> {
+    grid_volume_corrected_with(faces, c, start, solver, params, place, progress).map(|r| r.0)
+}
+
+/// [`grid_volume_corrected`], also returning the control functions of the final solve (those
+/// of the corrected algebraic map): the grid is the solution of [86] with them.
+#[allow(clippy::too_many_arguments)]
+pub fn grid_volume_corrected_with(
+    faces: &Faces,
+    c: &FaceCorrections,
+    start: Option<Grid3>,
+    solver: &mut dyn LinearSolver<Stencil19>,
+    params: &PicardParams,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<(VolumeResult, Control3)> {
     let targets = c
         .wall
         .map(|w| WallTargets::new(faces, w, place))
@@ -125,10 +140,13 @@ pub fn grid_volume_corrected(
         },
     };
     if !c.any() {
-        return Ok(VolumeResult {
-            grid: x,
-            picard: info.expect("one solve"),
-        });
+        return Ok((
+            VolumeResult {
+                grid: x,
+                picard: info.expect("one solve"),
+            },
+            Control3::from_algebraic(&pg),
+        ));
     }
     let mut goal = Vec::new();
     let mut tangent_goals: Vec<(usize, TangentGoals)> = Vec::new();
@@ -264,8 +282,11 @@ pub fn grid_volume_corrected(
             }
         }
     }
-    Ok(VolumeResult {
-        grid: x,
-        picard: info.expect("at least one solve"),
-    })
+    Ok((
+        VolumeResult {
+            grid: x,
+            picard: info.expect("at least one solve"),
+        },
+        Control3::from_algebraic(&pg),
+    ))
 }

@@ -3,6 +3,7 @@
 //! Generation and writing are separate so that a folded grid can be reported without any
 //! output file being written.
 
+pub mod floating;
 mod mesh;
 pub mod multiblock;
 pub mod multivolume;

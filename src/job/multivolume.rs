@@ -4,6 +4,7 @@
 //! that two volumes share is one grid seen in two orientations, so their nodes on it are
 //! bit-identical; the report gives the smoothness of the grid across every interior face.
 
+use super::floating::FloatingHistory;
 use super::volume::{solve_volume, VolumeReport};
 use crate::algebraic::coons::coons_sides;
 use crate::algebraic::transfinite3d::transfinite;
@@ -52,6 +53,9 @@ pub struct FaceInterfaceReport {
     pub volumes: [String; 2],
     #[serde(flatten)]
     pub smoothness: InterfaceSmoothness,
+    /// The rounds of a floating face (`interface = "floating"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub floating: Option<FloatingHistory>,
 }
 
 /// The grids and reports of a volume topology.
@@ -64,16 +68,21 @@ pub(super) struct Gridded3 {
 
 /// Grids every face, then every volume, of a volume topology.
 pub(super) fn generate(case: &LoadedCase, topo: &Topology3) -> Result<Gridded3> {
-    let (grids, faces) = grid_faces(case, topo)?;
-    let done: Vec<(String, Block, VolumeReport)> = (0..topo.volumes.len())
-        .into_par_iter()
-        .map(|v| {
-            let t0 = Instant::now();
-            let place = topo.volume_place(&case.path.display().to_string(), v);
-            let f = Faces::new(topo.volume_faces(v, &grids), &place)?;
-            solve_volume(case, v, &f, &place, t0)
-        })
-        .collect::<Result<_>>()?;
+    let (mut grids, faces) = grid_faces(case, topo)?;
+    let (done, mut floating) = if case.case.faces.iter().any(|f| f.floating()) {
+        super::floating::float(case, topo, &mut grids)?
+    } else {
+        let done: Vec<(String, Block, VolumeReport)> = (0..topo.volumes.len())
+            .into_par_iter()
+            .map(|v| {
+                let t0 = Instant::now();
+                let place = topo.volume_place(&case.path.display().to_string(), v);
+                let f = Faces::new(topo.volume_faces(v, &grids), &place)?;
+                solve_volume(case, v, &f, &place, t0)
+            })
+            .collect::<Result<_>>()?;
+        (done, vec![None; topo.faces.blocks.len()])
+    };
     let (blocks, volumes): (Vec<_>, Vec<_>) = done
         .into_iter()
         .map(|(name, block, rep)| ((name, block), rep))
@@ -93,6 +102,7 @@ pub(super) fn generate(case: &LoadedCase, topo: &Topology3) -> Result<Gridded3> 
             face: topo.faces.blocks[f.face].name.clone(),
             volumes: [f.a.volume, f.b.volume].map(|v| topo.volumes[v].name.clone()),
             smoothness: across(topo, f, &grids3),
+            floating: floating[f.face].take(),
         })
         .collect();
     Ok(Gridded3 {

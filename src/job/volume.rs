@@ -1,13 +1,15 @@
 //! Runs of volume blocks: generation of a case's `[[volume]]` (with its wall spacing, if any),
 //! the transfinite start grid, and the regridding of volume blocks of existing grids.
 
+use crate::algebraic::control3d::{control_for, Control3};
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::case::spec::VolumeSpec;
 use crate::case::volume::{volume_faces, volume_name, volume_place, wall_face};
 use crate::case::LoadedCase;
-use crate::elliptic::orthogonal3d::{grid_volume_corrected, FaceCorrections};
-use crate::elliptic::picard::{PicardInfo, PicardParams};
+use crate::elliptic::orthogonal3d::{grid_volume_corrected_with, FaceCorrections};
+use crate::elliptic::picard::{PicardInfo, PicardParams, VolumeResult};
+use crate::elliptic::poisson3d;
 use crate::elliptic::volume::{grid_volume, progress_enabled};
 use crate::elliptic::wall::{check_kind, wall_targets, WallOptions};
 use crate::elliptic::wall_normal::{wall_figure, WallFigure};
@@ -69,6 +71,23 @@ pub(crate) fn solve_volume(
     place: &str,
     t0: Instant,
 ) -> Result<(String, Block, VolumeReport)> {
+    solve_volume_from(case, k, faces, None, None, place, t0).map(|(name, g, rep, _)| (name, g, rep))
+}
+
+/// [`solve_volume`] from `start` (its boundary nodes replaced by the faces'), if given, also
+/// returning the control functions the grid solves [86] with (those of the corrected map when
+/// the volume has a wall or orthogonal faces). With `frozen` control functions, a start and
+/// corrections, one plain Picard solve with those controls instead of the correction passes
+/// (the corrections are in the controls).
+pub(crate) fn solve_volume_from(
+    case: &LoadedCase,
+    k: usize,
+    faces: &Faces,
+    start: Option<Grid3>,
+    frozen: Option<Control3>,
+    place: &str,
+    t0: Instant,
+) -> Result<(String, Block, VolumeReport, Control3)> {
     let spec = &case.case;
     let v = &spec.volumes[k];
     let name = volume_name(case, k);
@@ -89,18 +108,24 @@ pub(crate) fn solve_volume(
     if c.wall.is_some() {
         check_kind(spec.solver.control, place)?;
     }
-    let r = if c.any() {
-        grid_volume_corrected(faces, &c, None, solver.as_mut(), params, place, &mut cb)?
+    let frozen = frozen.filter(|_| c.any());
+    let (r, ctrl) = if let (Some(ctrl), Some(mut x)) = (frozen, start.clone()) {
+        faces.apply_to(&mut x);
+        let picard = poisson3d::solve(&mut x, &ctrl, solver.as_mut(), params, place, &mut cb)?;
+        (VolumeResult { grid: x, picard }, ctrl)
+    } else if c.any() {
+        grid_volume_corrected_with(faces, &c, start, solver.as_mut(), params, place, &mut cb)?
     } else {
-        grid_volume(
+        let r = grid_volume(
             faces,
-            None,
+            start,
             spec.solver.control,
             solver.as_mut(),
             params,
             place,
             &mut cb,
-        )?
+        )?;
+        (r, control_for(faces, spec.solver.control, place)?)
     };
     if let Some(pb) = pb {
         pb.finish_and_clear();
@@ -121,7 +146,7 @@ pub(crate) fn solve_volume(
         quality: q,
         wall,
     };
-    Ok((name, Block::Volume(r.grid), rep))
+    Ok((name, Block::Volume(r.grid), rep, ctrl))
 }
 
 /// The corrections a `[[volume]]` table asks for: the wall (`wall`, with `wall_orthogonal`,
