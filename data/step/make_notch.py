@@ -15,8 +15,9 @@ import sys
 PTS = [(0, 0), (4, 0), (4, 3), (2, 0.5), (0, 3)]
 
 
-def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else "."
+def write_polygon_face(name, pts, out, script):
+    """Writes OUT/NAME.step: one planar face bounded by the straight edges of the loop PTS
+    (counterclockwise about +z in the plane z = 0, millimetres); SCRIPT goes in FILE_NAME."""
     e = []
 
     def add(text):
@@ -29,7 +30,7 @@ def main():
     add("PRODUCT_DEFINITION_SHAPE('','',#5)")
     add("PRODUCT_DEFINITION('design','',#6,#9)")
     add("PRODUCT_DEFINITION_FORMATION('','',#7)")
-    add("PRODUCT('plane_notch','plane_notch','',(#8))")
+    add(f"PRODUCT('{name}','{name}','',(#8))")
     add("PRODUCT_CONTEXT('',#2,'mechanical')")
     add("PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design')")
     rep = add(None)  # #10, filled in below
@@ -39,13 +40,13 @@ def main():
     axis = add(f"AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})")
     plane = add(f"PLANE('',#{axis})")
     verts = []
-    for (px, py) in PTS:
+    for (px, py) in pts:
         p = add(f"CARTESIAN_POINT('',({px:.2f},{py:.2f},0.))")
         verts.append(add(f"VERTEX_POINT('',#{p})"))
     oriented = []
-    n = len(PTS)
+    n = len(pts)
     for k in range(n):
-        (ax, ay), (bx, by) = PTS[k], PTS[(k + 1) % n]
+        (ax, ay), (bx, by) = pts[k], pts[(k + 1) % n]
         length = ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
         p = add(f"CARTESIAN_POINT('',({ax:.2f},{ay:.2f},0.))")
         d = add(f"DIRECTION('',({(bx - ax) / length!r},{(by - ay) / length!r},0.))")
@@ -68,15 +69,20 @@ def main():
     add("( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) )")
     add("( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )")
     e[rep - 1] = f"MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#{axis},#{model}),#{ctx})"
-    with open(f"{out}/plane_notch.step", "w") as f:
+    with open(f"{out}/{name}.step", "w") as f:
         f.write("ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('ellipgrid test face'),'2;1');\n"
-                "FILE_NAME('plane_notch','2026-11-25T23:00:00',('ellipgrid'),(''),"
-                "'make_notch.py','','');\n"
+                f"FILE_NAME('{name}','2026-11-25T23:00:00',('ellipgrid'),(''),"
+                f"'{script}','','');\n"
                 "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\n"
                 "DATA;\n")
         for k, t in enumerate(e, 1):
             f.write(f"#{k} = {t};\n")
         f.write("ENDSEC;\nEND-ISO-10303-21;\n")
+
+
+def main():
+    out = sys.argv[1] if len(sys.argv) > 1 else "."
+    write_polygon_face("plane_notch", PTS, out, "make_notch.py")
 
 
 if __name__ == "__main__":

@@ -13,7 +13,7 @@
 //! planar face (its edges in one plane to 1e-12 of its diameter) keeps its nodes in the plane:
 //! the solved face nodes are projected onto it (a sliding face).
 //!
-//! [`crate::job`] alternates these face solves with the volume solves (warm-started) until the
+//! The job layer alternates these face solves with the volume solves (warm-started) until the
 //! largest move of a face node falls below the solve tolerance: an alternating Schwarz
 //! iteration whose overlap is the whole of both volumes, so that two volumes meeting at one
 //! floating face and nowhere else converge in one or two rounds.
