@@ -158,3 +158,32 @@ fn wall_input_errors_exit_2_naming_the_block_and_the_side() {
     assert!(vol.contains("wall = true"));
     rejects(&vol, &["edge 'bx0'", "wall", "[[volume]]"]);
 }
+
+#[test]
+fn verify_checks_a_held_wall_spacing_under_refinement_and_from_a_folded_start() {
+    // The bump channel at 49 x 17 (97 x 33 and 193 x 65 refined): second order, and the grid
+    // from a scrambled, folded start (wall passes included) is the grid `run` gives, to the
+    // tolerance of the passes' intermediate solves (1e-8, limit 10 times that).
+    let ex = fs::read_to_string(root().join("examples/airfoil_wall.toml")).unwrap();
+    let small = ex
+        .replace("ni = 385", "ni = 49")
+        .replace("nj = 65", "nj = 17");
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("c.toml"), small).unwrap();
+    let o = ellipgrid(d.path(), &["verify", "c.toml", "--report", "v.json", "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let r: Value =
+        serde_json::from_str(&fs::read_to_string(d.path().join("v.json")).unwrap()).unwrap();
+    let b = &r["blocks"][0];
+    assert_eq!(b["pass"], true);
+    let start = &b["start"];
+    assert!(start["start_folded"].as_u64().unwrap() > 0);
+    assert!(
+        (start["limit"].as_f64().unwrap() - 1e-7).abs() < 1e-20,
+        "{start}"
+    );
+    assert!(
+        start["difference"]["max"].as_f64().unwrap() < 1e-9,
+        "{start}"
+    );
+}
