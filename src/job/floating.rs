@@ -74,16 +74,18 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
             ..Default::default()
         })
         .collect();
-    let mut done = solve_all(case, topo, grids, None, None)?;
+    // The volumes' grids and control functions move from round to round (no copies: the
+    // strip's operator is the largest thing alive during a round).
+    let (mut names, mut vols, mut reports, mut ctrls) =
+        unpack(solve_all(case, topo, grids, None, None)?);
     for round in 1..=MAX_ROUNDS {
-        let mut vols: Vec<Grid3> = done.iter().map(|d| volume_of(&d.1).clone()).collect();
         let mut worst = 0.0f64;
         for ((strip, plane), h) in strips.iter().zip(&planes).zip(hist.iter_mut()) {
             let t0 = Instant::now();
             let f = strip.face();
             let place = topo.faces.block_place(&file, f);
-            let ctrls: Vec<&Control3> = done.iter().map(|d| &d.3).collect();
-            let ctrl = strip.controls(topo, &ctrls);
+            let refs: Vec<&Control3> = ctrls.iter().collect();
+            let ctrl = strip.controls(topo, &refs);
             let linear = &case.case.volumes[strip.volumes()[0]].linear;
             let mut solver =
                 for_block(linear, strip.dims()).map_err(|m| Error::input(&place, m))?;
@@ -108,12 +110,13 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
             h.seconds += t0.elapsed().as_secs_f64();
             worst = worst.max(update);
         }
-        let frozen = done.iter().map(|d| d.3.clone()).collect();
-        let mut next = solve_all(case, topo, grids, Some(vols), Some(frozen))?;
-        for (new, old) in next.iter_mut().zip(&done) {
-            accumulate(&mut new.2, &old.2);
+        let (starts, frozen) = (std::mem::take(&mut vols), std::mem::take(&mut ctrls));
+        let next = solve_all(case, topo, grids, Some(starts), Some(frozen))?;
+        let (n, v, mut r, c) = unpack(next);
+        for (new, old) in r.iter_mut().zip(&reports) {
+            accumulate(new, old);
         }
-        done = next;
+        (names, vols, reports, ctrls) = (n, v, r, c);
         let converged = worst <= params.tolerance;
         for h in &mut hist {
             h.rounds = round;
@@ -127,9 +130,11 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
     for (s, h) in strips.iter().zip(hist) {
         per_face[s.face()] = Some(h);
     }
-    let done = done
+    let done = names
         .into_iter()
-        .map(|(name, block, rep, _)| (name, block, rep))
+        .zip(vols)
+        .zip(reports)
+        .map(|((name, grid), rep)| (name, Block::Volume(grid), rep))
         .collect();
     Ok((done, per_face))
 }
@@ -175,9 +180,19 @@ fn accumulate(new: &mut VolumeReport, old: &VolumeReport) {
     p.history = history;
 }
 
-fn volume_of(b: &Block) -> &Grid3 {
-    match b {
-        Block::Volume(g) => g,
-        _ => unreachable!("volumes are volume blocks"),
+/// The volumes' names, grids, reports and control functions, moved out of their solves.
+type Unpacked = (Vec<String>, Vec<Grid3>, Vec<VolumeReport>, Vec<Control3>);
+
+fn unpack(solved: Vec<Solved>) -> Unpacked {
+    let mut out: Unpacked = Default::default();
+    for (name, block, rep, ctrl) in solved {
+        let Block::Volume(grid) = block else {
+            unreachable!("volumes are volume blocks")
+        };
+        out.0.push(name);
+        out.1.push(grid);
+        out.2.push(rep);
+        out.3.push(ctrl);
     }
+    out
 }
