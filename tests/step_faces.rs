@@ -13,6 +13,16 @@ use ellipgrid::quality::quality3d::AnyQuality;
 use ellipgrid::solve::direct::DirectLu;
 use std::f64::consts::PI;
 
+/// `ellipgrid step grid STEP --face N -o OUT` run in `dir`.
+fn step_grid_face(
+    dir: &std::path::Path,
+    step: &str,
+    face: &str,
+    out: &str,
+) -> std::process::Output {
+    ellipgrid(dir, &["step", "grid", step, "--face", face, "-o", out])
+}
+
 fn file(name: &str) -> std::path::PathBuf {
     root().join("data/step").join(name)
 }
@@ -194,18 +204,7 @@ fn a_reentrant_vertex_is_never_a_corner() {
     // The CLI grids it (exit 0) and writes the grid.
     let dir = tempfile::tempdir().unwrap();
     let step = file("plane_notch.step");
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            step.to_str().unwrap(),
-            "--face",
-            "1",
-            "-o",
-            "n.x",
-        ],
-    );
+    let o = step_grid_face(dir.path(), step.to_str().unwrap(), "1", "n.x");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert!(dir.path().join("n.x").exists());
 }
@@ -516,18 +515,7 @@ fn edges_within_three_uncertainties_of_the_file_are_on_the_face() {
             .replace("LENGTH_MEASURE(5.E-03)", "LENGTH_MEASURE(1.E-03)"),
     )
     .unwrap();
-    let o = ellipgrid(
-        d.path(),
-        &[
-            "step",
-            "grid",
-            tight.to_str().unwrap(),
-            "--face",
-            "1",
-            "-o",
-            "t.x",
-        ],
-    );
+    let o = step_grid_face(d.path(), tight.to_str().unwrap(), "1", "t.x");
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(
         text(&o).contains("from the face's surface (tolerance 5.000e-3)"),
@@ -535,18 +523,7 @@ fn edges_within_three_uncertainties_of_the_file_are_on_the_face() {
         text(&o)
     );
     assert!(!d.path().join("t.x").exists());
-    let o = ellipgrid(
-        d.path(),
-        &[
-            "step",
-            "grid",
-            path.to_str().unwrap(),
-            "--face",
-            "1",
-            "-o",
-            "ok.x",
-        ],
-    );
+    let o = step_grid_face(d.path(), path.to_str().unwrap(), "1", "ok.x");
     assert!(o.status.success(), "{}", text(&o));
 }
 
@@ -582,18 +559,7 @@ fn an_l_shaped_face_whose_grids_fold_at_its_reentrant_vertex_is_untangled() {
     // The CLI grids it (exit 0) with the default 65 × 49 nodes and writes the grid.
     let dir = tempfile::tempdir().unwrap();
     let step = file("plane_lshape.step");
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            step.to_str().unwrap(),
-            "--face",
-            "1",
-            "-o",
-            "l.x",
-        ],
-    );
+    let o = step_grid_face(dir.path(), step.to_str().unwrap(), "1", "l.x");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert!(
         text(&o).contains("folded cells                       0"),
