@@ -154,12 +154,12 @@ pub fn grid_volume_corrected_with(
     // parameters (the fallback if a later pass folds the grid).
     let mut best: Option<(f64, ParamGrid3, Grid3)> = None;
     let score = |x: &Grid3| {
-        let q = crate::quality::quality3d::quality3d(x);
+        use crate::quality::quality3d::{face_quality, folded_cells3d};
         let worst = ortho
             .iter()
-            .map(|&f| q.faces[f].orthogonality_max_deg)
+            .map(|&f| face_quality(x, f).orthogonality_max_deg)
             .fold(0.0, f64::max);
-        (q.folded_cells, worst)
+        (folded_cells3d(x), worst)
     };
     if !ortho.is_empty() {
         if let (0, s) = score(&x) {

@@ -47,10 +47,13 @@ pub const MAX_PASSES: usize = 6;
 /// Passes stop once every column node's |ln(goal / distance)| is below this (the first-cell
 /// heights are then within ~0.5 %).
 pub const TOLERANCE: f64 = 0.05;
-/// Picard tolerance of the intermediate solves (relative to the block's diameter). The passes
-/// remap from these grids, so the final grid is defined only to about this tolerance (a start
-/// grid changes it by that much).
-pub const LOOSE_TOLERANCE: f64 = 1e-8;
+/// Picard tolerance of the intermediate solves of a volume (relative to the block's
+/// diameter). The passes remap from these grids, so the final grid is defined only to about
+/// this tolerance (a start grid changes it by that much). Measured on the wing_m6_co C–O block
+/// against 1e-8: 57 Picard steps instead of 76, nodes within 6e-7 of the diameter, first
+/// spacings within 0.2 %, wall lines 0.17° off the normal instead of 0.06° (1e-7: 65 steps;
+/// 1e-5: 55 steps, spacings to 0.998).
+pub const LOOSE_TOLERANCE: f64 = 1e-6;
 /// Largest change of a node's parameter in one pass (factor).
 const MAX_RATIO: f64 = 4.0;
 /// With `orthogonal`, passes also stop only once every first off-wall node is within this sine

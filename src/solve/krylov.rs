@@ -61,7 +61,13 @@ pub fn bicgstab(
             update(r, |i, ri| *ri = b[i] - t[i]);
             dot(r, r).sqrt()
         };
-    let r0 = true_residual(apply, x, &mut r, &mut t);
+    // Correction form starts from zero: then r = b without a product.
+    let r0 = if x.par_iter().all(|&v| v == 0.0) {
+        r.copy_from_slice(b);
+        dot(&r, &r).sqrt()
+    } else {
+        true_residual(apply, x, &mut r, &mut t)
+    };
     if let Some(done) = SolveInfo::start(r0)? {
         return Ok(done);
     }

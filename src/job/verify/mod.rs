@@ -48,7 +48,8 @@ pub const FLOOR: f64 = 100.0;
 /// Picard tolerance (max norm, relative to the diameter): each is converged to the tolerance
 /// by the a-posteriori estimate of [`crate::elliptic::picard`], which is not a bound. (A
 /// block or volume with a wall spacing is defined only to the tolerance of its intermediate solves,
-/// [`crate::elliptic::wall::LOOSE_TOLERANCE`], if that is larger.)
+/// [`crate::elliptic::wall::LOOSE_TOLERANCE`], 2D [`crate::elliptic::wall2d::LOOSE_TOLERANCE`], if
+/// that is larger.)
 pub const START_LIMIT: f64 = 10.0;
 
 /// The seed of the warps and scrambled starts unless one is given.

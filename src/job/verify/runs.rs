@@ -14,6 +14,7 @@ use crate::elliptic::periodic;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::volume::grid_volume;
 use crate::elliptic::wall::LOOSE_TOLERANCE;
+use crate::elliptic::wall2d::LOOSE_TOLERANCE as LOOSE_TOLERANCE_2D;
 use crate::grid::boundary::Boundary2;
 use crate::grid::faces::Faces;
 use crate::grid::Grid2;
@@ -61,7 +62,7 @@ pub struct StartRun {
     pub failure: Option<String>,
     /// The tolerance the grids are defined to: the Picard tolerance, or for a block or volume
     /// with a wall spacing that of its intermediate solves if larger
-    /// ([`crate::elliptic::wall::LOOSE_TOLERANCE`]).
+    /// ([`crate::elliptic::wall::LOOSE_TOLERANCE`], 2D [`crate::elliptic::wall2d::LOOSE_TOLERANCE`]).
     pub tolerance: f64,
 }
 
@@ -179,7 +180,7 @@ fn start_2d<const D: usize>(
 /// intermediate solves, if larger (as for volumes).
 fn wall_tolerance(tol: f64, sides: Sides) -> f64 {
     if sides.wall.contains(&true) {
-        tol.max(LOOSE_TOLERANCE)
+        tol.max(LOOSE_TOLERANCE_2D)
     } else {
         tol
     }

@@ -9,20 +9,42 @@ use crate::quality::quality3d::{FaceQuality, QualityReport3};
 use crate::quality::stats::{lines, CellStats, Listed};
 use crate::Grid3;
 
+/// The eight corners of cell (i, j, k), corner c at (i + bit 0, j + bit 1, k + bit 2).
+fn cell_corners(g: &Grid3, i: usize, j: usize, k: usize) -> [V; 8] {
+    std::array::from_fn(|c| g.point(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)))
+}
+
+/// The three cell edges leaving corner c, oriented along +i, +j, +k.
+#[inline]
+fn corner_edges(x: &[V; 8], c: usize) -> [V; 3] {
+    std::array::from_fn(|a| {
+        let d = sub(x[c ^ (1 << a)], x[c]);
+        if (c >> a) & 1 == 1 {
+            [-d[0], -d[1], -d[2]]
+        } else {
+            d
+        }
+    })
+}
+
+/// The smallest of the eight corner Jacobians of cell (i, j, k), times `sign`.
+fn corner_jacobian_min(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> f64 {
+    let x = cell_corners(g, i, j, k);
+    (0..8)
+        .map(|c| {
+            let e = corner_edges(&x, c);
+            sign * dot(e[0], cross(e[1], e[2]))
+        })
+        .fold(f64::INFINITY, nmin)
+}
+
 /// Per-cell measures: (min corner Jacobian, min scaled Jacobian, skewness, aspect ratio), with
 /// the Jacobians multiplied by `sign`.
 fn eval_cell(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> [f64; 4] {
-    let x: [V; 8] = std::array::from_fn(|c| g.point(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)));
+    let x = cell_corners(g, i, j, k);
     let (mut jmin, mut smin) = (f64::INFINITY, f64::INFINITY);
-    for (c, &xc) in x.iter().enumerate() {
-        let e: [V; 3] = std::array::from_fn(|a| {
-            let d = sub(x[c ^ (1 << a)], xc);
-            if (c >> a) & 1 == 1 {
-                [-d[0], -d[1], -d[2]]
-            } else {
-                d
-            }
-        });
+    for c in 0..8 {
+        let e = corner_edges(&x, c);
         let jac = sign * dot(e[0], cross(e[1], e[2]));
         let l = norm(e[0]) * norm(e[1]) * norm(e[2]);
         jmin = nmin(jmin, jac);
@@ -73,7 +95,7 @@ pub const FLAT_EDGE_DEG: f64 = 179.0;
 /// a NaN, a zero-length edge or any other non-positive corner is present.
 pub fn flat_edge_cell(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> bool {
     let dims = g.dims();
-    let x: [V; 8] = std::array::from_fn(|c| g.point(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)));
+    let x = cell_corners(g, i, j, k);
     let mut any = false;
     for (c, &xc) in x.iter().enumerate() {
         let raw: [V; 3] = std::array::from_fn(|a| sub(x[c ^ (1 << a)], xc));
@@ -132,7 +154,7 @@ fn orientation(g: &Grid3) -> f64 {
             let (mut p, mut n) = (0usize, 0usize);
             for j in 0..nj - 1 {
                 for i in 0..ni - 1 {
-                    let jac = eval_cell(g, i, j, k, 1.0)[0];
+                    let jac = corner_jacobian_min(g, i, j, k, 1.0);
                     p += usize::from(jac > 0.0);
                     n += usize::from(jac < 0.0);
                 }
@@ -173,7 +195,7 @@ impl Acc {
 }
 
 /// Orthogonality and first heights at face f (0 = F1 … 5 = F6).
-fn face_quality(g: &Grid3, f: usize) -> FaceQuality {
+pub fn face_quality(g: &Grid3, f: usize) -> FaceQuality {
     let d = g.dims();
     let axis = f / 2;
     let (ta, tb) = match axis {
@@ -244,6 +266,32 @@ fn face_quality(g: &Grid3, f: usize) -> FaceQuality {
         first_height_min: if ok { r.3 } else { nan },
         first_height_max: if ok { r.4 } else { nan },
     }
+}
+
+/// The number of folded cells of [`quality3d`] alone (a non-positive corner Jacobian that is
+/// not a flat-edge corner), without the other measures: for solvers that only need to know
+/// whether a grid folds.
+pub fn folded_cells3d(g: &Grid3) -> usize {
+    let [ni, nj, nk] = g.dims();
+    if ni < 2 || nj < 2 || nk < 2 {
+        return 0;
+    }
+    let sign = orientation(g);
+    (0..nk - 1)
+        .into_par_iter()
+        .map(|k| {
+            let mut n = 0;
+            for j in 0..nj - 1 {
+                for i in 0..ni - 1 {
+                    let jac = corner_jacobian_min(g, i, j, k, sign);
+                    if (jac.is_nan() || jac <= 0.0) && !flat_edge_cell(g, i, j, k, sign) {
+                        n += 1;
+                    }
+                }
+            }
+            n
+        })
+        .sum()
 }
 
 /// The quality report of a volume grid (module docs). Never panics; grids smaller than

@@ -35,7 +35,7 @@ use crate::quality::display::{cell_list, first_cells, num, table_line};
 use crate::quality::{json_f64, QualityReport};
 
 pub mod metrics;
-pub use metrics::{cell_fields3d, quality3d};
+pub use metrics::{cell_fields3d, face_quality, folded_cells3d, quality3d};
 
 pub use crate::quality::MAX_FIRST_FOLDED;
 
@@ -318,6 +318,33 @@ mod tests {
         });
         let q = quality3d(&bent);
         assert_eq!((q.folded_cells, q.flat_edge_cells), (2, 0), "{q}");
+    }
+
+    #[test]
+    fn the_fold_count_alone_is_the_reports() {
+        let g = flat_edge_block();
+        let mut folded = g.clone();
+        let p = folded.point(1, 1, 2);
+        folded.set(1, 1, 2, [p[0], p[1], -0.5]);
+        let mut degenerate = g.clone();
+        degenerate.set(0, 1, 3, degenerate.point(0, 0, 3));
+        let mut nan = g.clone();
+        nan.set(2, 1, 1, [f64::NAN, 0.0, 0.0]);
+        let mirrored = Grid3::from_fn(4, 3, 4, |i, j, k| {
+            let p = g.point(i, j, k);
+            [-p[0], p[1], p[2]]
+        });
+        for (name, x) in [
+            ("flat edge", &g),
+            ("folded", &folded),
+            ("degenerate", &degenerate),
+            ("nan", &nan),
+            ("left-handed", &mirrored),
+        ] {
+            let q = quality3d(x);
+            assert_eq!(metrics::folded_cells3d(x), q.folded_cells, "{name}: {q}");
+        }
+        assert!(metrics::folded_cells3d(&nan) > 0);
     }
 
     #[test]
