@@ -39,6 +39,38 @@ pub fn alphas(g: [[f64; 3]; 3]) -> [f64; 6] {
     ]
 }
 
+/// One row of the (negated) operator in the slot order of [`OFFSETS`]: the centre
+/// 2(α¹¹ + α²² + α³³), the face neighbours −(α^tt ± ½ s_t) along axis t, and the edge
+/// neighbours ∓½ α^pr of the 4-corner mixed derivatives (sign −o_p o_r), with s the
+/// first-derivative coefficients Σ_ij α^ij P^k_ij.
+#[inline]
+fn row_coefficients(row: &mut [f64; 19], al: [f64; 6], sk: [f64; 3]) {
+    let [d0, d1, d2] = [al[0], al[3], al[5]];
+    let (h01, h02, h12) = (0.5 * al[1], 0.5 * al[2], 0.5 * al[4]);
+    let [s0, s1, s2] = sk.map(|v| 0.5 * v);
+    *row = [
+        2.0 * (d0 + d1 + d2),
+        -(d0 - s0),
+        -(d0 + s0),
+        -(d1 - s1),
+        -(d1 + s1),
+        -(d2 - s2),
+        -(d2 + s2),
+        -h01,
+        h01,
+        h01,
+        -h01,
+        -h02,
+        h02,
+        h02,
+        -h02,
+        -h12,
+        h12,
+        h12,
+        -h12,
+    ];
+}
+
 /// Assembles the frozen 19-point operator of [86] at iterate `x` and the right-hand sides
 /// (one per coordinate) that carry the Dirichlet boundary values. Rows are multiplied by −1 so
 /// that the diagonal 2(α11 + α22 + α33) is positive.
@@ -49,16 +81,6 @@ pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f6
     let (plane, uplane) = (ni * nj, nx * ny);
     let st = [1isize, ni as isize, plane as isize];
     let xs = x.coords();
-    // For each slot: its nonzero axes (t, t) for a face neighbour, (p, r) for an edge one.
-    let axes: [[usize; 2]; 19] = std::array::from_fn(|m| {
-        let o = OFFSETS[m];
-        let nz: Vec<usize> = (0..3).filter(|&t| o[t] != 0).collect();
-        match nz.len() {
-            1 => [nz[0], nz[0]],
-            2 => [nz[0], nz[1]],
-            _ => [0, 0],
-        }
-    });
     let [r0, r1, r2] = rhs;
     a.coefs_mut()
         .par_chunks_mut(uplane)
@@ -91,18 +113,8 @@ pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f6
                     let w = [1.0, 2.0, 2.0, 1.0, 2.0, 1.0];
                     let sk: [f64; 3] =
                         std::array::from_fn(|c| (0..6).map(|m| w[m] * al[m] * pk[3 * m + c]).sum());
-                    let diag = [al[0], al[3], al[5]];
-                    let mixed = |p: usize, r: usize| al[[[9, 1, 2], [1, 9, 4], [2, 4, 9]][p][r]];
                     let row = &mut arow[q];
-                    row[C] = 2.0 * (diag[0] + diag[1] + diag[2]);
-                    for (m, o) in OFFSETS.iter().enumerate().skip(1) {
-                        let [p, r] = axes[m];
-                        row[m] = if p == r {
-                            -(diag[p] + 0.5 * o[p] as f64 * sk[p])
-                        } else {
-                            -0.5 * mixed(p, r) * (o[p] * o[r]) as f64
-                        };
-                    }
+                    row_coefficients(row, al, sk);
                     // Known boundary neighbours go to the right-hand side.
                     for b in bs.iter_mut() {
                         b[q] = 0.0;
