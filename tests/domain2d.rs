@@ -1,6 +1,8 @@
 //! The Section 2 method on planar domains, through the library: exact discrete solutions,
 //! independence of the start grid, second-order convergence, boundary layers.
 
+mod common;
+
 use ellipgrid::algebraic::transform::transfinite;
 use ellipgrid::algebraic::ControlKind;
 use ellipgrid::case::LoadedCase;
@@ -41,14 +43,7 @@ fn solve(b: &Boundary2<2>, start: Option<Grid2<2>>, kind: ControlKind) -> Grid2<
 }
 
 fn max_diff(a: &Grid2<2>, b: &Grid2<2>) -> f64 {
-    (0..2)
-        .flat_map(|c| {
-            a.coord(c)
-                .iter()
-                .zip(b.coord(c))
-                .map(|(u, v)| (u - v).abs())
-        })
-        .fold(0.0, f64::max)
+    common::max_diff(a.coords(), b.coords())
 }
 
 #[test]

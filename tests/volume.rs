@@ -328,25 +328,7 @@ fn warped_box(d: [usize; 3]) -> Faces {
 
 /// Largest node distance of two grids relative to the diameter of the first.
 fn max_difference(a: &Grid3, b: &Grid3) -> f64 {
-    let diam = (0..3)
-        .map(|c| {
-            let v = a.coord(c);
-            let (lo, hi) = v
-                .iter()
-                .fold((f64::MAX, f64::MIN), |(l, h), &x| (l.min(x), h.max(x)));
-            (hi - lo).powi(2)
-        })
-        .sum::<f64>()
-        .sqrt();
-    (0..3)
-        .flat_map(|c| {
-            a.coord(c)
-                .iter()
-                .zip(b.coord(c))
-                .map(|(u, v)| (u - v).abs())
-        })
-        .fold(0.0, f64::max)
-        / diam
+    max_diff(a.coords(), b.coords()) / a.diameter()
 }
 
 fn nested_solve(

@@ -112,16 +112,7 @@ fn four_block_c_o_grid_is_fold_free_and_holds_the_wall_spacing() {
         }
         // Each grid is defined to the tolerance of the wall passes' intermediate solves
         // (relative to the block's diameter); mirrored blocks solve in another order.
-        let diam = (0..3)
-            .map(|c| {
-                let v = g[up].coord(c);
-                let (lo, hi) = v
-                    .iter()
-                    .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
-                (hi - lo).powi(2)
-            })
-            .sum::<f64>()
-            .sqrt();
+        let diam = g[up].diameter();
         let limit = 10.0 * ellipgrid::elliptic::wall::LOOSE_TOLERANCE * diam;
         assert!(
             worst < limit,

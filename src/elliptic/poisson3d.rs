@@ -247,7 +247,7 @@ pub(crate) fn solve_timed(
         ctrl.dims() == dims,
         ctrl.all_finite(),
     )?;
-    let diam = diameter(x);
+    let diam = x.diameter();
     let a = Stencil19::zeros(dims[0] - 2, dims[1] - 2, dims[2] - 2);
     let n = a.len();
     let mut sys = System3 {
@@ -321,20 +321,4 @@ impl picard::System for System3<'_> {
     fn diameter(&self) -> f64 {
         self.diam
     }
-}
-
-/// Bounding-box diagonal of a volume grid.
-pub(crate) fn diameter(x: &Grid3) -> f64 {
-    x.coords()
-        .iter()
-        .map(|c| {
-            let (lo, hi) = c
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-                    (lo.min(v), hi.max(v))
-                });
-            (hi - lo).powi(2)
-        })
-        .sum::<f64>()
-        .sqrt()
 }

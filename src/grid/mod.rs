@@ -172,18 +172,7 @@ impl<const D: usize> Grid2<D> {
 
     /// Diagonal of the axis-aligned bounding box: the length scale of relative tolerances.
     pub fn diameter(&self) -> f64 {
-        let mut d2 = 0.0;
-        for c in &self.coords {
-            let (lo, hi) = c
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-                    (lo.min(v), hi.max(v))
-                });
-            if hi >= lo {
-                d2 += (hi - lo) * (hi - lo);
-            }
-        }
-        d2.sqrt()
+        bbox_diameter(&self.coords)
     }
 
     /// True if every coordinate is finite.
@@ -294,6 +283,32 @@ impl Grid3 {
     pub fn coords_mut(&mut self) -> &mut [Vec<f64>; 3] {
         &mut self.coords
     }
+
+    /// Diagonal of the axis-aligned bounding box: the length scale of relative tolerances.
+    pub fn diameter(&self) -> f64 {
+        bbox_diameter(&self.coords)
+    }
+}
+
+/// The diagonal of the axis-aligned bounding box of nodes given by coordinate arrays (0 for
+/// none).
+pub fn bbox_diameter(coords: &[Vec<f64>]) -> f64 {
+    coords
+        .iter()
+        .map(|c| {
+            let (lo, hi) = c
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                    (lo.min(v), hi.max(v))
+                });
+            if hi >= lo {
+                (hi - lo) * (hi - lo)
+            } else {
+                0.0
+            }
+        })
+        .sum::<f64>()
+        .sqrt()
 }
 
 #[cfg(test)]

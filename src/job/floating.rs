@@ -10,7 +10,6 @@ use super::volume::{solve_volume_from, VolumeReport};
 use crate::algebraic::control3d::Control3;
 use crate::case::LoadedCase;
 use crate::elliptic::floating3d::{Plane, Strip};
-use crate::elliptic::poisson3d::diameter;
 use crate::grid::faces::Faces;
 use crate::grid::topology::volume::Topology3;
 use crate::grid::Grid2;
@@ -104,7 +103,7 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
                 ));
             }
             let moved = strip.scatter(topo, &x, &mut grids[f], plane.as_ref(), &mut vols);
-            let update = moved / diameter(&x);
+            let update = moved / x.diameter();
             h.updates.push(update);
             h.picard_steps += info.steps;
             h.seconds += t0.elapsed().as_secs_f64();

@@ -27,22 +27,7 @@ pub struct Difference {
 
 /// The bounding-box diagonal of a grid's nodes.
 pub fn diameter(coords: &[Vec<f64>]) -> f64 {
-    coords
-        .iter()
-        .map(|c| {
-            let (lo, hi) = c
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-                    (lo.min(v), hi.max(v))
-                });
-            if hi >= lo {
-                (hi - lo).powi(2)
-            } else {
-                0.0
-            }
-        })
-        .sum::<f64>()
-        .sqrt()
+    crate::grid::bbox_diameter(coords)
 }
 
 /// How many fine intervals one coarse interval spans in each direction, if `fine` refines

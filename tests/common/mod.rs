@@ -5,6 +5,15 @@ use ellipgrid::grid::Grid2;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// Largest |a − b| over the coordinate arrays of two grids of the same size
+/// (`Grid2::coords`, `Grid3::coords`).
+pub fn max_diff(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
+    a.iter()
+        .zip(b)
+        .flat_map(|(u, v)| u.iter().zip(v).map(|(p, q)| (p - q).abs()))
+        .fold(0.0, f64::max)
+}
+
 /// Runs the `ellipgrid` binary with `args` in `dir`.
 pub fn ellipgrid(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_ellipgrid"))
