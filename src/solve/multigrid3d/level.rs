@@ -77,10 +77,14 @@ pub(super) struct Level {
     /// smoother only; allocated by `factor_lines`).
     pub fac: [Vec<[f64; 2]>; 3],
     /// Prolongation stars (one per coarse unknown): weight of the coarse value at each of
-    /// its 27 fine neighbours.
-    pub p: Vec<[f64; 27]>,
-    /// Restriction stars: weight of each of the 27 fine neighbours' residuals.
-    pub r: Vec<[f64; 27]>,
+    /// its 27 fine neighbours. Single precision (#16): they only move corrections and
+    /// residuals, so rounding them changes the coarse-grid correction a little, never the
+    /// cycle's fixed point (the fine residual and smoother stay f64; the Galerkin operator
+    /// is built from the rounded stars). 54 bytes per fine unknown with `r` instead of 108.
+    pub p: Vec<[f32; 27]>,
+    /// Restriction stars: weight of each of the 27 fine neighbours' residuals (single
+    /// precision, as `p`).
+    pub r: Vec<[f32; 27]>,
 }
 
 impl Level {

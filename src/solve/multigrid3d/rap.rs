@@ -32,6 +32,7 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
                 let rs = &fine.r[ic + nc[0] * (jc + nc[1] * kc)];
                 let mut t = [0.0f64; 125];
                 for (c, &w) in rs.iter().enumerate() {
+                    let w = f64::from(w);
                     if w == 0.0 {
                         continue;
                     }
@@ -69,7 +70,7 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
                     for o2 in range(dd[2]) {
                         for o1 in range(dd[1]) {
                             for o0 in range(dd[0]) {
-                                let pw = ps[s27(o0, o1, o2)];
+                                let pw = f64::from(ps[s27(o0, o1, o2)]);
                                 if pw != 0.0 {
                                     sum += pw
                                         * t[t5([2 * dd[0] + o0, 2 * dd[1] + o1, 2 * dd[2] + o2])];
