@@ -15,7 +15,8 @@ fn t5(s: [isize; 3]) -> usize {
     ((s[0] + 2) + 5 * (s[1] + 2) + 25 * (s[2] + 2)) as usize
 }
 
-/// Computes the coarse rows `coarse.a` from fine level `fine` (its operator and stars).
+/// Computes the coarse rows `coarse.a` from fine level `fine` (its operator and stars), in
+/// f64, stored in single precision.
 pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
     let dims = fine.dims;
     let nc = coarse.dims;
@@ -24,7 +25,7 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
         return;
     }
     let [nx, ny, _] = dims;
-    let plane = |(kc, out): (usize, &mut [[f64; 27]])| {
+    let plane = |(kc, out): (usize, &mut [[f32; 27]])| {
         for jc in 0..nc[1] {
             for ic in 0..nc[0] {
                 let kk = [ic, jc, kc];
@@ -80,7 +81,8 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
                     }
                     *out = sum;
                 }
-                out[ic + nc[0] * jc] = st;
+                // stored rounded (Level::a)
+                out[ic + nc[0] * jc] = st.map(|v| v as f32);
             }
         }
     };
