@@ -149,7 +149,7 @@ impl Hierarchy {
         {
             let (fine, coarse) = lv.split_at_mut(l + 1);
             let (v, vc) = (&fine[l], &mut coarse[0]);
-            interp::restrict(&lev.r, nx, ny, &v.r, &mut vc.b);
+            interp::restrict(interp::restriction(&lev.p, &lev.r), nx, ny, &v.r, &mut vc.b);
             vc.x.fill(0.0);
         }
         let coarsest_next = l + 2 == nl;

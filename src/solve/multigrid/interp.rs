@@ -147,11 +147,14 @@ pub(crate) fn split_weights(am: f64, ap: f64, ac: f64, d: [f64; 3], c: f64) -> (
     (sigma * f, sigma * (1.0 - f))
 }
 
-/// One coarse row of prolongation and restriction stars, with its index.
-type StarRows<'a> = (usize, (&'a mut [[f64; 9]], &'a mut [[f64; 9]]));
+/// One coarse row of prolongation and restriction stars (none with `R = Pᵀ`), with its
+/// index.
+type StarRows<'a> = (usize, (&'a mut [[f64; 9]], Option<&'a mut [[f64; 9]]>));
 
 /// Builds the prolongation stars `p` and restriction stars `r` (one per coarse point) of the
-/// fine operator `a` (`nx × ny`). `transpose`: restriction = Pᵀ instead of the adjoint-based one.
+/// fine operator `a` (`nx × ny`). `transpose`: restriction = Pᵀ instead of the adjoint-based
+/// one; `r` is then empty and stays so (the restriction stars are the prolongation stars:
+/// [`restriction`]).
 pub(super) fn build_transfer(
     a: &[[f64; 9]],
     nx: usize,
@@ -162,8 +165,8 @@ pub(super) fn build_transfer(
 ) -> Result<(), SolveError> {
     let (ncx, ncy) = (nx / 2, ny / 2);
     assert_eq!(p.len(), ncx * ncy);
-    assert_eq!(r.len(), ncx * ncy);
-    let row = |(jc, (prow, rrow)): StarRows| {
+    assert_eq!(r.len(), if transpose { 0 } else { ncx * ncy });
+    let row = |(jc, (prow, mut rrow)): StarRows| {
         let fj = 2 * jc + 1;
         // weights of the x-edge point west of the current coarse point, carried over from
         // the previous coarse point (for which it was the east point)
@@ -227,23 +230,47 @@ pub(super) fn build_transfer(
                 };
             }
             prow[ic] = ps;
-            rrow[ic] = rs;
+            if let Some(rrow) = rrow.as_deref_mut() {
+                rrow[ic] = rs;
+            }
         }
         Ok(())
     };
     if ncx == 0 || ncy == 0 {
         return Ok(());
     }
-    if use_par(nx * ny) {
-        p.par_chunks_mut(ncx)
-            .zip(r.par_chunks_mut(ncx))
+    match (use_par(nx * ny), transpose) {
+        (true, false) => p
+            .par_chunks_mut(ncx)
+            .zip(r.par_chunks_mut(ncx).map(Some))
             .enumerate()
-            .try_for_each(row)
+            .try_for_each(row),
+        (true, true) => p
+            .par_chunks_mut(ncx)
+            .map(|pr| (pr, None))
+            .enumerate()
+            .try_for_each(row),
+        (false, false) => p
+            .chunks_mut(ncx)
+            .zip(r.chunks_mut(ncx).map(Some))
+            .enumerate()
+            .try_for_each(row),
+        (false, true) => p
+            .chunks_mut(ncx)
+            .map(|pr| (pr, None))
+            .enumerate()
+            .try_for_each(row),
+    }
+}
+
+/// The restriction stars of a level with prolongation stars `p` and restriction stars `r`:
+/// `r`, or `p` itself when `r` is empty (`R = Pᵀ`, not stored twice: 18 bytes per fine
+/// unknown, #16).
+pub(super) fn restriction<'a>(p: &'a [[f64; 9]], r: &'a [[f64; 9]]) -> &'a [[f64; 9]] {
+    if r.is_empty() {
+        p
     } else {
-        p.chunks_mut(ncx)
-            .zip(r.chunks_mut(ncx))
-            .enumerate()
-            .try_for_each(row)
+        r
     }
 }
 

@@ -5,7 +5,7 @@
 //! has fewer than two unknowns (it could not be halved), or after `max_levels` levels.
 
 use crate::solve::multigrid::coarse::BandLu;
-use crate::solve::multigrid::interp::build_transfer;
+use crate::solve::multigrid::interp::{build_transfer, restriction};
 use crate::solve::multigrid::rap::galerkin;
 use crate::solve::multigrid::relax::{factor_x, factor_y, YLineOp};
 use crate::solve::multigrid::{MgParams, Restriction, Smoother};
@@ -25,7 +25,8 @@ pub(super) struct Level {
     pub xop: Vec<[f64; 2]>,
     pub yop: YLineOp,
     /// Prolongation and restriction stars to the next coarser level (one per coarse point;
-    /// empty on the coarsest level).
+    /// empty on the coarsest level; `r` also empty with `R = Pᵀ`, see
+    /// `interp::restriction`).
     pub p: Vec<[f64; 9]>,
     pub r: Vec<[f64; 9]>,
 }
@@ -82,7 +83,12 @@ impl Hierarchy {
                         vec![[0.0; 9]; nx * ny]
                     },
                     p: vec![[0.0; 9]; nc],
-                    r: vec![[0.0; 9]; nc],
+                    // R = Pᵀ is read from p (interp::restriction)
+                    r: if params.restriction == Restriction::Transpose {
+                        Vec::new()
+                    } else {
+                        vec![[0.0; 9]; nc]
+                    },
                     ..Default::default()
                 };
                 if !coarsest {
@@ -209,7 +215,8 @@ impl Hierarchy {
                 factor_y(&lev.a, lev.nx, lev.ny, &mut lev.yop)?;
             }
             build_transfer(&lev.a, lev.nx, lev.ny, &mut lev.p, &mut lev.r, transpose)?;
-            galerkin(&lev.a, lev.nx, lev.ny, &lev.p, &lev.r, &mut rest[0].a);
+            let r = restriction(&lev.p, &lev.r);
+            galerkin(&lev.a, lev.nx, lev.ny, &lev.p, r, &mut rest[0].a);
         }
         Ok(())
     }

@@ -604,7 +604,7 @@ fn kernel_timings() {
         );
     });
     time("restrict", &mut || {
-        interp::restrict(&lev.r, n, n, r, &mut bc)
+        interp::restrict(interp::restriction(&lev.p, &lev.r), n, n, r, &mut bc)
     });
     time("prolong", &mut || interp::prolong_add(&lev.p, n, n, &bc, x));
     let mut ws = Workspace::new(h);

@@ -67,8 +67,11 @@ pub(super) struct Level {
     pub dims: [usize; 3],
     /// Rows of the 27-point operator (unpadded numbering, i fastest); empty on the fine
     /// level, whose operator is `a19` (its 27-point rows, [`Level::row`], are expanded where
-    /// a setup needs them: keeping them would cost 216 bytes per fine unknown).
-    pub a: Vec<[f64; 27]>,
+    /// a setup needs them: keeping them would cost 216 bytes per fine unknown). Single
+    /// precision (#16): a coarse level only computes corrections, so its rounded Galerkin
+    /// operator changes the coarse-grid correction a little, never the cycle's fixed point;
+    /// its residuals, smoothers and the next Galerkin product all read the rounded rows.
+    pub a: Vec<[f32; 27]>,
     /// The fine level's operator as given, 19-point rows (couplings leaving the grid zeroed;
     /// empty on coarse levels): the residuals and plane sweeps of a cycle read these, 152
     /// instead of 216 bytes and 19 instead of 27 products per unknown ([`Level::times_row`]).
@@ -77,10 +80,14 @@ pub(super) struct Level {
     /// smoother only; allocated by `factor_lines`).
     pub fac: [Vec<[f64; 2]>; 3],
     /// Prolongation stars (one per coarse unknown): weight of the coarse value at each of
-    /// its 27 fine neighbours.
-    pub p: Vec<[f64; 27]>,
-    /// Restriction stars: weight of each of the 27 fine neighbours' residuals.
-    pub r: Vec<[f64; 27]>,
+    /// its 27 fine neighbours. Single precision (#16): they only move corrections and
+    /// residuals, so rounding them changes the coarse-grid correction a little, never the
+    /// cycle's fixed point (the fine residual and smoother stay f64; the Galerkin operator
+    /// is built from the rounded stars). 54 bytes per fine unknown with `r` instead of 108.
+    pub p: Vec<[f32; 27]>,
+    /// Restriction stars: weight of each of the 27 fine neighbours' residuals (single
+    /// precision, as `p`).
+    pub r: Vec<[f32; 27]>,
 }
 
 impl Level {
@@ -118,7 +125,7 @@ impl Level {
     #[inline]
     pub fn row(&self, p: usize) -> [f64; 27] {
         if self.a19.is_empty() {
-            self.a[p]
+            self.a[p].map(f64::from)
         } else {
             let src = &self.a19[p];
             let mut r = [0.0; 27];
@@ -133,7 +140,7 @@ impl Level {
     #[inline]
     pub fn coef(&self, p: usize, m: usize) -> f64 {
         if self.a19.is_empty() {
-            self.a[p][m]
+            f64::from(self.a[p][m])
         } else {
             match INDEX19[m] {
                 Some(t) => self.a19[p][t],
@@ -201,7 +208,7 @@ impl Level {
         if self.a19.is_empty() {
             let row = &self.a[p];
             for m in 0..27 {
-                s += row[m] * *xq.offset(qo[m]);
+                s += f64::from(row[m]) * *xq.offset(qo[m]);
             }
         } else {
             let row = &self.a19[p];

@@ -15,7 +15,8 @@ fn t5(s: [isize; 3]) -> usize {
     ((s[0] + 2) + 5 * (s[1] + 2) + 25 * (s[2] + 2)) as usize
 }
 
-/// Computes the coarse rows `coarse.a` from fine level `fine` (its operator and stars).
+/// Computes the coarse rows `coarse.a` from fine level `fine` (its operator and stars), in
+/// f64, stored in single precision.
 pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
     let dims = fine.dims;
     let nc = coarse.dims;
@@ -24,7 +25,7 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
         return;
     }
     let [nx, ny, _] = dims;
-    let plane = |(kc, out): (usize, &mut [[f64; 27]])| {
+    let plane = |(kc, out): (usize, &mut [[f32; 27]])| {
         for jc in 0..nc[1] {
             for ic in 0..nc[0] {
                 let kk = [ic, jc, kc];
@@ -32,6 +33,7 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
                 let rs = &fine.r[ic + nc[0] * (jc + nc[1] * kc)];
                 let mut t = [0.0f64; 125];
                 for (c, &w) in rs.iter().enumerate() {
+                    let w = f64::from(w);
                     if w == 0.0 {
                         continue;
                     }
@@ -69,7 +71,7 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
                     for o2 in range(dd[2]) {
                         for o1 in range(dd[1]) {
                             for o0 in range(dd[0]) {
-                                let pw = ps[s27(o0, o1, o2)];
+                                let pw = f64::from(ps[s27(o0, o1, o2)]);
                                 if pw != 0.0 {
                                     sum += pw
                                         * t[t5([2 * dd[0] + o0, 2 * dd[1] + o1, 2 * dd[2] + o2])];
@@ -79,7 +81,8 @@ pub(super) fn galerkin(fine: &Level, coarse: &mut Level) {
                     }
                     *out = sum;
                 }
-                out[ic + nc[0] * jc] = st;
+                // stored rounded (Level::a)
+                out[ic + nc[0] * jc] = st.map(|v| v as f32);
             }
         }
     };

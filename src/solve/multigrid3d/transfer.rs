@@ -180,7 +180,7 @@ fn inner_weight(g: &[f64; 27], plan: &InnerPlan, star: &[f64; 27]) -> Option<f64
 }
 
 /// One coarse plane of prolongation and restriction stars, with its index.
-type StarPlanes<'a> = (usize, (&'a mut [[f64; 27]], &'a mut [[f64; 27]]));
+type StarPlanes<'a> = (usize, (&'a mut [[f32; 27]], &'a mut [[f32; 27]]));
 
 /// Builds the prolongation stars `lev.p` and restriction stars `lev.r` of level `lev`
 /// (`transpose`: `R = Pᵀ`).
@@ -249,8 +249,10 @@ pub(super) fn build_transfer(lev: &mut Level, transpose: bool) -> Result<(), Sol
                     }
                 }
                 let id = ic + nc[0] * jc;
-                pp[id] = ps;
-                rp[id] = rs;
+                // built in f64 (the face and body weights read the edge weights), stored
+                // rounded (Level::p)
+                pp[id] = ps.map(|w| w as f32);
+                rp[id] = rs.map(|w| w as f32);
             }
         }
         Ok(())
@@ -292,7 +294,7 @@ pub(super) fn restrict(lev: &Level, rf: &[f64], bc: &mut [f64]) {
                 let q = lev.q(2 * ic + 1, 2 * jc + 1, 2 * kc + 1) as isize;
                 let mut s = 0.0;
                 for m in 0..27 {
-                    s += st[m] * rf[(q + qo[m]) as usize];
+                    s += f64::from(st[m]) * rf[(q + qo[m]) as usize];
                 }
                 bp[id] = s;
             }
@@ -330,7 +332,7 @@ pub(super) fn prolong_add(lev: &Level, coarse: &Level, xc: &[f64], xf: &mut [f64
                     for m in 0..27 {
                         // SAFETY: coarse plane kc writes fine planes 2kc … 2kc + 2 only;
                         // planes of one parity are two coarse planes apart.
-                        unsafe { *x.offset(q + qo[m]) += st[m] * e };
+                        unsafe { *x.offset(q + qo[m]) += f64::from(st[m]) * e };
                     }
                 }
             }
