@@ -306,6 +306,27 @@ fn equals_direct_lu_on_small_systems() {
     }
 }
 
+/// The volume grid of `faces` with the algebraic control functions, solved with `solver`;
+/// asserts that the Picard iteration converged.
+fn converged_volume(
+    faces: &Faces,
+    solver: &mut dyn LinearSolver<Stencil19>,
+    params: &PicardParams,
+) -> crate::elliptic::picard::VolumeResult {
+    let r = grid_volume(
+        faces,
+        None,
+        ControlKind::Algebraic,
+        solver,
+        params,
+        "t",
+        &mut |_, _| {},
+    )
+    .unwrap();
+    assert!(r.picard.converged, "{:?}", r.picard);
+    r
+}
+
 #[test]
 fn grid_volume_equals_direct_lu() {
     let g = warped([11, 9, 10], 1, Some(1e-3));
@@ -314,26 +335,15 @@ fn grid_volume_equals_direct_lu() {
         nested: Some(false),
         ..Default::default()
     };
-    let mut grids = Vec::new();
     // Bi-CGSTAB's ILU(0) factors are single precision: the converged grid is the same.
-    for solver in [
+    let grids: Vec<Grid3> = [
         &mut DirectLu3::new() as &mut dyn LinearSolver<Stencil19>,
         &mut Multigrid3::default(),
         &mut crate::solve::ilu::BiCgStabIlu::new(),
-    ] {
-        let r = grid_volume(
-            &faces,
-            None,
-            ControlKind::Algebraic,
-            solver,
-            &params,
-            "t",
-            &mut |_, _| {},
-        )
-        .unwrap();
-        assert!(r.picard.converged, "{:?}", r.picard);
-        grids.push(r.grid);
-    }
+    ]
+    .into_iter()
+    .map(|solver| converged_volume(&faces, solver, &params).grid)
+    .collect();
     for g in &grids[1..] {
         for c in 0..3 {
             for (u, v) in grids[0].coord(c).iter().zip(g.coord(c)) {
@@ -552,24 +562,13 @@ fn single_precision_coarse_levels_keep_the_converged_grid() {
         linear_forcing: 0.0,
         ..Default::default()
     };
-    let mut runs = Vec::new();
-    for solver in [
+    let runs: Vec<_> = [
         &mut DirectLu3::new() as &mut dyn LinearSolver<Stencil19>,
         &mut Multigrid3::default(),
-    ] {
-        let r = grid_volume(
-            &faces,
-            None,
-            ControlKind::Algebraic,
-            solver,
-            &params,
-            "t",
-            &mut |_, _| {},
-        )
-        .unwrap();
-        assert!(r.picard.converged, "{:?}", r.picard);
-        runs.push(r);
-    }
+    ]
+    .into_iter()
+    .map(|solver| converged_volume(&faces, solver, &params))
+    .collect();
     assert_eq!(runs[0].picard.steps, runs[1].picard.steps);
     let mut diff = 0.0f64;
     for c in 0..3 {
