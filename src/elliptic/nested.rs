@@ -343,9 +343,7 @@ pub fn grid_block_nested<const D: usize>(
         pg,
         start: None,
     };
-    run(block, &sizes, place, t0, |x, ctrl, stop, at, _| {
-        poisson2d::solve_timed(x, ctrl, solver, params, level_stop::<D>(params, stop), at)
-    })
+    run(block, &sizes, place, t0, level_solve::<D>(solver, params))
 }
 
 /// Solves [24] with the algebraic control functions of the (s, t) grid `pg` (on coarse levels:
@@ -371,9 +369,28 @@ pub(crate) fn solve_nested_from<const D: usize>(
         pg: Some(pg),
         start: Some(start),
     };
-    run(block, &sizes, place, t0, |x, ctrl, stop, at, _| {
-        poisson2d::solve_timed(x, ctrl, solver, params, level_stop::<D>(params, stop), at)
-    })
+    run(block, &sizes, place, t0, level_solve::<D>(solver, params))
+}
+
+/// The level solve of the 2D nested iterations: [24] to the level's stop ([`level_stop`]).
+/// The finest level starts with Newton steps where the level below it took them: the slow
+/// Picard contraction that made Newton worth it there is the finest level's too, and the
+/// Picard steps that would first observe it again cost the finest level two or three steps
+/// (NACA0012 O-grid at 4 × 257²: fine steps 7 → 5 in step 1 of Section 2.4, 6 → 5 in step 3).
+/// Coarse levels keep their Picard start: there Newton steps cost more than they save.
+fn level_solve<'a, const D: usize>(
+    solver: &'a mut dyn LinearSolver,
+    params: &'a PicardParams,
+) -> impl FnMut(&mut Grid2<D>, &Control2, f64, &str, bool) -> Result<(PicardInfo, f64)> + 'a {
+    let mut newton_below = false;
+    move |x, ctrl, stop, at, finest| {
+        let stop = level_stop::<D>(params, stop);
+        let r = poisson2d::solve_level(x, ctrl, solver, params, stop, finest && newton_below, at);
+        newton_below = r
+            .as_ref()
+            .is_ok_and(|(info, _)| info.history.iter().any(|h| h.newton));
+        r
+    }
 }
 
 /// Every `stride`-th node of an (s, t) grid.

@@ -26,8 +26,10 @@
 //! contract by more than [`SLOW_PICARD`]: where Picard converges fast (smooth domains, a
 //! nested level predicted well by the coarser one) its steps are cheaper than Newton's
 //! (measured at 1025²: the same step counts, ~1.5× the work units), where it is slow
-//! (stretched O- and C-grids, ~0.4 per step) Newton needs a third of the steps. After a
-//! rejected Newton step, Picard steps follow until the updates are ten times smaller.
+//! (stretched O- and C-grids, ~0.4 per step) Newton needs a third of the steps. The finest
+//! level of nested iteration starts with Newton steps if the level below it took them
+//! (`newton_now`, `crate::elliptic::nested`). After a rejected Newton step, Picard steps follow
+//! until the updates are ten times smaller.
 //!
 //! # Stop
 //! As for Picard (`picard::error_estimate`): the last update, or once the
@@ -115,12 +117,14 @@ struct Buffers {
     krylov: GmresWorkspace,
 }
 
-/// Runs the Newton–Krylov iteration of `sys` (module docs); as [`picard::run`] returns the
-/// report and the shortest time (seconds) of one evaluation.
+/// Runs the Newton–Krylov iteration of `sys` (module docs), with Newton steps from the first
+/// if `newton_now`; as [`picard::run`] returns the report and the shortest time (seconds) of
+/// one evaluation.
 pub(crate) fn run<S: NewtonSystem>(
     sys: &mut S,
     params: &PicardParams,
     relative_stop: f64,
+    newton_now: bool,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<(PicardInfo, f64)> {
@@ -150,7 +154,7 @@ pub(crate) fn run<S: NewtonSystem>(
     // updates are ten times smaller
     let mut rejected_at: Option<f64> = None;
     // Picard steps were seen to contract slowly: Newton steps from now on
-    let mut slow = false;
+    let mut slow = newton_now;
     // the preconditioner is set up for a Newton step (kept until a Picard step or a slow
     // Krylov solve)
     let mut ready = false;
@@ -221,6 +225,7 @@ pub(crate) fn run<S: NewtonSystem>(
                                 residual,
                                 solves: vec![Ok(info)],
                                 update,
+                                newton: true,
                             });
                         }
                     }
@@ -250,6 +255,7 @@ pub(crate) fn run<S: NewtonSystem>(
                 residual,
                 solves,
                 update,
+                newton: false,
             })
         },
         progress,

@@ -309,12 +309,12 @@ pub fn solve<const D: usize>(
         damp: DAMPING,
         fd: None,
     };
-    let run = if params.iteration(D) == Nonlinear::Newton {
-        newton::run
+    let solved = if params.iteration(D) == Nonlinear::Newton {
+        newton::run(&mut sys, params, 0.0, false, place, &mut |_, _| {})
     } else {
-        picard::run
+        picard::run(&mut sys, params, 0.0, place, &mut |_, _| {})
     };
-    run(&mut sys, params, 0.0, place, &mut |_, _| {}).map(|(info, _)| info)
+    solved.map(|(info, _)| info)
 }
 
 /// Grids one periodic block (E1 = E2 the floating cut): the start grid between E3 and E4

@@ -174,6 +174,9 @@ pub struct PicardStep {
     pub linear_iterations: Vec<usize>,
     /// Final relative linear residual per coordinate (0 for a direct solve).
     pub linear_residual: Vec<f64>,
+    /// True for a Newton step ([`crate::elliptic::newton`]); absent for a Picard step.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub newton: bool,
 }
 
 /// What the Picard iteration did: part of every result and report.
@@ -255,6 +258,8 @@ pub(crate) struct StepWork {
     pub solves: Vec<std::result::Result<SolveInfo, SolveError>>,
     /// Largest correction relative to the diameter (NaN if the grid became non-finite).
     pub update: f64,
+    /// True if this was a Newton step.
+    pub newton: bool,
 }
 
 /// One grid system's part of a Picard step: the 2D system [24]
@@ -390,6 +395,7 @@ pub(crate) fn run<S: System>(
                 residual,
                 solves,
                 update: sys.apply(largest),
+                newton: false,
             })
         },
         progress,
@@ -437,6 +443,7 @@ pub(crate) fn iterate(
         let work = step(small, &ctl, threshold)?;
         let mut record = step_record(work.residual, work.solves, place)?;
         record.update = work.update;
+        record.newton = work.newton;
         progress(step_no + 1, &record);
         history.push(record);
         if !work.update.is_finite() {
@@ -571,6 +578,7 @@ fn step_record(
         residual,
         linear_iterations: Vec::with_capacity(infos.len()),
         linear_residual: Vec::with_capacity(infos.len()),
+        newton: false,
     };
     for info in infos {
         let info = info.map_err(|source| Error::Solve {

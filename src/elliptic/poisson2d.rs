@@ -224,6 +224,21 @@ pub(crate) fn solve_timed<const D: usize>(
     relative_stop: f64,
     place: &str,
 ) -> Result<(PicardInfo, f64)> {
+    solve_level(x, ctrl, solver, params, relative_stop, false, place)
+}
+
+/// [`solve_timed`] for a level of nested iteration: with `newton_now` (the coarser level took
+/// Newton steps) and Newton's iteration, Newton steps from the first step instead of Picard
+/// steps until they are seen to contract slowly (`crate::elliptic::newton`).
+pub(crate) fn solve_level<const D: usize>(
+    x: &mut Grid2<D>,
+    ctrl: &Control2,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    relative_stop: f64,
+    newton_now: bool,
+    place: &str,
+) -> Result<(PicardInfo, f64)> {
     let (ni, nj) = (x.ni(), x.nj());
     picard::check_input(
         place,
@@ -252,7 +267,14 @@ pub(crate) fn solve_timed<const D: usize>(
         Nonlinear::Picard => picard::run(&mut sys, params, relative_stop, place, &mut |_, _| {}),
         Nonlinear::Newton => {
             sys.coupling = Some(Coupling::new(nx, ny));
-            newton::run(&mut sys, params, relative_stop, place, &mut |_, _| {})
+            newton::run(
+                &mut sys,
+                params,
+                relative_stop,
+                newton_now,
+                place,
+                &mut |_, _| {},
+            )
         }
     }
 }

@@ -10,6 +10,7 @@ fn history(rho: f64, steps: usize, eta: f64) -> Vec<PicardStep> {
             residual: 0.0,
             linear_iterations: vec![1],
             linear_residual: vec![eta],
+            newton: false,
         })
         .collect()
 }
@@ -39,6 +40,7 @@ fn oscillating_update_norms_are_judged_by_their_mean_contraction() {
             residual: 0.0,
             linear_iterations: vec![1],
             linear_residual: vec![0.0],
+            newton: false,
         })
         .collect();
     let grows = (3..60)
