@@ -137,14 +137,9 @@ pub(crate) fn run<S: NewtonSystem>(
     };
     params.check().map_err(|m| Error::input(place, m))?;
     let (d, n) = (sys.coordinates(), sys.nodes());
-    let mut buf = Buffers {
-        rhs: vec![0.0; d * n],
-        delta: vec![0.0; d * n],
-        scale: vec![0.0; n],
-        setup_scale: vec![0.0; n],
-        tmp: vec![0.0; d * n],
-        krylov: GmresWorkspace::default(),
-    };
+    // allocated at the first Newton step: a solve whose steps all stay Picard steps (smooth
+    // domains) holds no more than the Picard iteration
+    let mut buffers: Option<Buffers> = None;
     let mut moved = f64::INFINITY;
     // the residual of the current iterate if the last line search evaluated it
     let mut cached: Option<f64> = None;
@@ -175,19 +170,27 @@ pub(crate) fn run<S: NewtonSystem>(
             let newton = slow && rejected_at.is_none_or(|u| last_update < 0.1 * u);
             if newton {
                 rejected_at = None;
+                let buf = buffers.get_or_insert_with(|| Buffers {
+                    rhs: vec![0.0; d * n],
+                    delta: vec![0.0; d * n],
+                    scale: vec![0.0; n],
+                    setup_scale: vec![0.0; n],
+                    tmp: vec![0.0; d * n],
+                    krylov: GmresWorkspace::default(),
+                });
                 sys.linearize();
                 let ctl = SolveControl {
                     rel_tol: forcing(params, prev_update, last_update),
                     ..*ctl
                 };
                 let ctl = &ctl;
-                scaled_residual(sys, &mut buf);
+                scaled_residual(sys, buf);
                 let fresh = !ready || changed(&buf.scale, &buf.setup_scale) > KEEP_CHANGE;
                 if fresh {
                     sys.setup_preconditioner().map_err(solve_error)?;
                     buf.setup_scale.copy_from_slice(&buf.scale);
                 }
-                let mut info = krylov(sys, &mut buf, ctl, true).map_err(solve_error)?;
+                let mut info = krylov(sys, buf, ctl, true).map_err(solve_error)?;
                 if !info.converged && !fresh {
                     // the kept preconditioner is too far from J: set it up at this iterate
                     // and go on from the correction so far
@@ -198,7 +201,7 @@ pub(crate) fn run<S: NewtonSystem>(
                         rel_tol: (ctl.rel_tol / done).min(1.0),
                         ..*ctl
                     };
-                    let next = krylov(sys, &mut buf, &more, false).map_err(solve_error)?;
+                    let next = krylov(sys, buf, &more, false).map_err(solve_error)?;
                     info.iterations += next.iterations;
                     info.residual_history
                         .extend(next.residual_history.iter().map(|r| r * done));
@@ -237,17 +240,16 @@ pub(crate) fn run<S: NewtonSystem>(
                 evaluate(&mut *sys);
             }
             ready = false;
-            let lin = sys.linear();
+            // the solver takes the operator over (`System::prepare`, one copy, not two;
+            // the next `evaluate` takes it back)
             let small = !newton && small && moved < picard::SMALL_CHANGE;
-            picard::prepare(lin.solver, lin.a, small).map_err(solve_error)?;
+            sys.prepare(small).map_err(solve_error)?;
             sys.picard_ready();
+            // the Picard step in the system's own arrays, as `picard::run` takes it (large
+            // grids solve the coordinates one after the other: one cycle workspace)
             let lin = sys.linear();
-            for (c, rc) in lin.r.iter().enumerate() {
-                buf.rhs[c * n..(c + 1) * n].copy_from_slice(rc);
-            }
-            let solves = picard_step(sys, &mut buf, ctl);
-            let largest = max_abs(&buf.delta);
-            let update = sys.apply_scaled(&buf.delta, 1.0, largest);
+            let (solves, largest) = picard::solve_corrections(&*lin.solver, lin.u, lin.r, ctl);
+            let update = sys.apply(largest);
             moved = update;
             prev_update = last_update;
             last_update = update;
@@ -366,26 +368,6 @@ fn krylov<S: NewtonSystem>(
         return Err(e);
     }
     Ok(info)
-}
-
-/// The Picard correction A δ = r (`buf.rhs`, unscaled) into `buf.delta`, one coordinate per
-/// rayon task with the solver's current setup, solved to `ctl`.
-fn picard_step<S: NewtonSystem>(
-    sys: &mut S,
-    buf: &mut Buffers,
-    ctl: &SolveControl,
-) -> Vec<std::result::Result<SolveInfo, SolveError>> {
-    let n = sys.nodes();
-    let lin = sys.linear();
-    let solver = &*lin.solver;
-    buf.delta
-        .par_chunks_mut(n)
-        .zip(buf.rhs.par_chunks(n))
-        .map(|(dc, rc)| {
-            dc.fill(0.0);
-            solver.solve(rc, dc, ctl)
-        })
-        .collect()
 }
 
 /// The relative Krylov tolerance of a Newton step after updates `prev` and `last` (relative

@@ -266,7 +266,7 @@ pub(crate) fn solve_level<const D: usize>(
     match params.iteration(D) {
         Nonlinear::Picard => picard::run(&mut sys, params, relative_stop, place, &mut |_, _| {}),
         Nonlinear::Newton => {
-            sys.coupling = Some(Coupling::new(nx, ny));
+            // the coupling is allocated by the first Newton step (`linearize`)
             newton::run(
                 &mut sys,
                 params,

@@ -26,19 +26,28 @@ pub struct GmresWorkspace {
 }
 
 impl GmresWorkspace {
-    /// Makes room for `restart` iterations on vectors of length `n` (allocates only on a
-    /// change of size).
-    fn fit(&mut self, n: usize, restart: usize) {
+    /// Vectors of length `n`, the basis emptied on a change of size; the basis vectors are
+    /// added as the iterations reach them ([`GmresWorkspace::reach`]), so a solve that
+    /// converges in a few iterations holds a few vectors, not `restart`.
+    fn fit(&mut self, n: usize) {
         if self.w.len() != n {
             self.v.clear();
             self.z.clear();
             self.w = vec![0.0; n];
         }
-        while self.v.len() < restart + 1 {
+        if self.v.is_empty() {
             self.v.push(vec![0.0; n]);
         }
-        while self.z.len() < restart {
-            self.z.push(vec![0.0; n]);
+    }
+
+    /// Makes room for iteration `k`: z_k and v_(k+1) (allocates only the first time a solve
+    /// with this workspace gets that far).
+    fn reach(v: &mut Vec<Vec<f64>>, z: &mut Vec<Vec<f64>>, k: usize, n: usize) {
+        while z.len() <= k {
+            z.push(vec![0.0; n]);
+        }
+        while v.len() <= k + 1 {
+            v.push(vec![0.0; n]);
         }
     }
 
@@ -68,7 +77,7 @@ pub fn gmres(
     let n = b.len();
     assert_eq!(x.len(), n, "gmres: solution length");
     let m = restart.max(1);
-    ws.fit(n, m);
+    ws.fit(n);
     let GmresWorkspace { v, z, w } = ws;
     // r = b − A x into v_0
     let residual =
@@ -94,6 +103,7 @@ pub fn gmres(
         g[0] = beta;
         let mut k = 0;
         while k < m && info.iterations < ctl.max_iter {
+            GmresWorkspace::reach(v, z, k, n);
             precond(&v[k], &mut z[k]);
             apply(&z[k], w);
             let col = &mut h[k];
