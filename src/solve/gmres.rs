@@ -274,6 +274,31 @@ mod tests {
         );
     }
 
+    /// The basis holds the vectors the iterations reached, not `restart` (#16: the Newton
+    /// steps' Krylov solves converge in a few iterations on most grids).
+    #[test]
+    fn the_basis_grows_with_the_iterations() {
+        let n = 1000;
+        let b: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
+        let mut ws = GmresWorkspace::default();
+        let mut x = vec![0.0; n];
+        // A = 2 I, preconditioned by its exact inverse: one iteration
+        let info = gmres(
+            &mut |v, o| o.iter_mut().zip(v).for_each(|(o, v)| *o = 2.0 * v),
+            &mut |v, o| o.iter_mut().zip(v).for_each(|(o, v)| *o = 0.5 * v),
+            &b,
+            &mut x,
+            &SolveControl::default(),
+            30,
+            &mut ws,
+        )
+        .unwrap();
+        assert!(info.converged && info.iterations == 1, "{info:?}");
+        assert!(x.iter().zip(&b).all(|(x, b)| (x - 0.5 * b).abs() < 1e-14));
+        // w, v_0, v_1 and z_0
+        assert_eq!(ws.bytes(), 8 * n * 4);
+    }
+
     #[test]
     fn zero_right_hand_side_is_solved_at_once() {
         let mut ws = GmresWorkspace::default();
