@@ -259,6 +259,93 @@ unsafe fn xline(a: &[[f64; 9]], fac: &[[f64; 2]], b: &[f64], x: *mut f64, nx: us
     }
 }
 
+/// Two x-lines of one colour at once, rows `j` and `j + 2` ([`xline`] for each, the same
+/// arithmetic): the elimination of a line is a chain of dependent multiply–adds, so a core
+/// that runs two chains side by side does the pair in little more than the time of one line
+/// (`kernel_timings`, one thread, a whole sweep: 4.1 → 2.9 ns per unknown at 255², where the
+/// rows are in cache; 9.9 → 8.7 at 1023²).
+///
+/// # Safety
+/// As [`xline`] for both rows; `x` points at unknown `(0, j)` and row `j + 2` is `2 nx` further.
+#[inline]
+unsafe fn xline2(a: &[[f64; 9]], fac: &[[f64; 2]], b: &[f64], x: *mut f64, nx: usize) {
+    if nx < 2 {
+        xline(a, fac, b, x, nx);
+        xline(
+            &a[2 * nx..],
+            &fac[2 * nx..],
+            &b[2 * nx..],
+            x.add(2 * nx),
+            nx,
+        );
+        return;
+    }
+    let row = |k: usize| {
+        let x = x.add(2 * k * nx);
+        (
+            std::slice::from_raw_parts(x.sub(nx), nx),
+            std::slice::from_raw_parts(x.add(nx), nx),
+            std::slice::from_raw_parts_mut(x, nx),
+        )
+    };
+    let ((s0, n0, c0), (s1, n1, c1)) = (row(0), row(1));
+    let (a0, a1) = (&a[..nx], &a[2 * nx..3 * nx]);
+    let (f0, f1) = (&fac[..nx], &fac[2 * nx..3 * nx]);
+    let (b0, b1) = (&b[..nx], &b[2 * nx..3 * nx]);
+    let (m0, m1) = (&a0[0], &a1[0]);
+    let mut p0 = (b0[0] - m0[1] * s0[0] - m0[2] * s0[1] - m0[7] * n0[0] - m0[8] * n0[1]) * f0[0][0];
+    let mut p1 = (b1[0] - m1[1] * s1[0] - m1[2] * s1[1] - m1[7] * n1[0] - m1[8] * n1[1]) * f1[0][0];
+    c0[0] = p0;
+    c1[0] = p1;
+    for i in 1..nx - 1 {
+        let (m0, m1) = (&a0[i], &a1[i]);
+        p0 = (b0[i]
+            - m0[0] * s0[i - 1]
+            - m0[1] * s0[i]
+            - m0[2] * s0[i + 1]
+            - m0[6] * n0[i - 1]
+            - m0[7] * n0[i]
+            - m0[8] * n0[i + 1]
+            - m0[3] * p0)
+            * f0[i][0];
+        p1 = (b1[i]
+            - m1[0] * s1[i - 1]
+            - m1[1] * s1[i]
+            - m1[2] * s1[i + 1]
+            - m1[6] * n1[i - 1]
+            - m1[7] * n1[i]
+            - m1[8] * n1[i + 1]
+            - m1[3] * p1)
+            * f1[i][0];
+        c0[i] = p0;
+        c1[i] = p1;
+    }
+    let i = nx - 1;
+    let (m0, m1) = (&a0[i], &a1[i]);
+    p0 = (b0[i]
+        - m0[0] * s0[i - 1]
+        - m0[1] * s0[i]
+        - m0[6] * n0[i - 1]
+        - m0[7] * n0[i]
+        - m0[3] * p0)
+        * f0[i][0];
+    p1 = (b1[i]
+        - m1[0] * s1[i - 1]
+        - m1[1] * s1[i]
+        - m1[6] * n1[i - 1]
+        - m1[7] * n1[i]
+        - m1[3] * p1)
+        * f1[i][0];
+    c0[i] = p0;
+    c1[i] = p1;
+    for i in (0..nx - 1).rev() {
+        p0 = c0[i] - f0[i][1] * p0;
+        p1 = c1[i] - f1[i][1] * p1;
+        c0[i] = p0;
+        c1[i] = p1;
+    }
+}
+
 /// Zebra x-line half sweep over the rows `j ≡ colour (mod 2)` of operator `a` with its x-line
 /// factors `xop`.
 #[allow(clippy::too_many_arguments)]
@@ -279,29 +366,42 @@ pub(super) fn xzebra(
     let xp = SharedPtr(unsafe { x.as_mut_ptr().add(pd) });
     let b = &b[pd..pd + nx * ny];
     let count = (ny + 1 - colour) / 2;
-    let line = |t: usize| {
-        let j = colour + 2 * t;
-        let r = j * nx..(j + 1) * nx;
+    // lines t = 2q and 2q + 1 of this colour (rows j and j + 2) together
+    let pair = |q: usize| {
+        let j = colour + 4 * q;
         // SAFETY: rows of one colour are disjoint and read only rows of the other colour;
         // rows -1 and ny lie in the padding.
         unsafe {
-            xline(
-                &a[r.clone()],
-                &xop[r.clone()],
-                &b[r],
-                xp.get().add(j * nx),
-                nx,
-            )
+            if 2 * q + 1 < count {
+                let r = j * nx..(j + 3) * nx;
+                xline2(
+                    &a[r.clone()],
+                    &xop[r.clone()],
+                    &b[r],
+                    xp.get().add(j * nx),
+                    nx,
+                )
+            } else {
+                let r = j * nx..(j + 1) * nx;
+                xline(
+                    &a[r.clone()],
+                    &xop[r.clone()],
+                    &b[r],
+                    xp.get().add(j * nx),
+                    nx,
+                )
+            }
         }
     };
+    let pairs = count.div_ceil(2);
     if use_par(nx * ny) {
-        let min_len = (4096 / nx).max(1);
-        (0..count)
+        let min_len = (2048 / nx).max(1);
+        (0..pairs)
             .into_par_iter()
             .with_min_len(min_len)
-            .for_each(line);
+            .for_each(pair);
     } else {
-        (0..count).for_each(line);
+        (0..pairs).for_each(pair);
     }
 }
 

@@ -852,3 +852,60 @@ fn adopt_solves_as_setup_and_gives_the_operator_back() {
         assert_eq!(y, x_copy);
     }
 }
+
+/// A zebra x-line half sweep solves every line of its colour exactly: afterwards the
+/// nine-point equations of those rows hold to round-off with the other rows' values (odd and
+/// even row counts: lines paired two at a time, and a last line alone).
+#[test]
+fn an_x_line_half_sweep_solves_its_lines() {
+    for (nx, ny) in [(7, 9), (6, 10), (2, 5), (1, 4)] {
+        let val = |k: usize, salt: usize| ((k * 7919 + salt * 104_729) % 1000) as f64 / 1000.0;
+        let a: Vec<[f64; 9]> = (0..nx * ny)
+            .map(|p| {
+                let mut m = [0.0; 9];
+                for (d, c) in m.iter_mut().enumerate() {
+                    *c = if d == 4 {
+                        9.0 + val(p, d)
+                    } else {
+                        -0.5 - val(p, d)
+                    };
+                }
+                m
+            })
+            .collect();
+        let mut xop = Vec::new();
+        relax::factor_x(&a, nx, ny, &mut xop).unwrap();
+        let len = relax::padded_len(nx, ny);
+        let pd = relax::pad(nx);
+        let b: Vec<f64> = (0..len).map(|k| val(k, 11) - 0.5).collect();
+        for colour in 0..2 {
+            let mut x: Vec<f64> = (0..len).map(|k| val(k, 13)).collect();
+            x[..pd].fill(0.0);
+            x[pd + nx * ny..].fill(0.0);
+            relax::xzebra(&a, &xop, nx, ny, &mut x, &b, colour);
+            let at = |i: isize, j: isize| {
+                if i < 0 || j < 0 || i >= nx as isize || j >= ny as isize {
+                    0.0
+                } else {
+                    x[pd + i as usize + nx * j as usize]
+                }
+            };
+            for j in (colour..ny).step_by(2) {
+                for i in 0..nx {
+                    let m = &a[i + nx * j];
+                    let mut r = b[pd + i + nx * j];
+                    for dj in -1isize..=1 {
+                        for di in -1isize..=1 {
+                            let k = ((dj + 1) * 3 + di + 1) as usize;
+                            r -= m[k] * at(i as isize + di, j as isize + dj);
+                        }
+                    }
+                    assert!(
+                        r.abs() < 1e-13,
+                        "{nx}×{ny} colour {colour}: row {j} node {i}: {r:e}"
+                    );
+                }
+            }
+        }
+    }
+}
