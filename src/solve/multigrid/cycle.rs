@@ -11,8 +11,9 @@
 //! `W`: two coarse-grid corrections per level; `F`: an F-cycle then a V-cycle on the next
 //! coarser level. The coarsest level is solved exactly.
 
-use crate::solve::multigrid::relax::{pad, padded_len, residual, xzebra, yzebra, Zeroed};
+use crate::solve::multigrid::relax::{pad, padded_len, residual, yzebra, Zeroed};
 use crate::solve::multigrid::setup::Hierarchy;
+use crate::solve::multigrid::xline::xzebra;
 use crate::solve::multigrid::{interp, Cycle, Smoother};
 
 /// Vectors of one level, all padded (see [`crate::solve::multigrid::relax::pad`]).

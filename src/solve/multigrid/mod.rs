@@ -69,6 +69,7 @@ mod safe;
 mod setup;
 #[cfg(test)]
 mod tests;
+mod xline;
 
 pub use krylov::bicgstab;
 pub use safe::MultigridSafe;

@@ -7,7 +7,8 @@
 use crate::solve::multigrid::coarse::BandLu;
 use crate::solve::multigrid::interp::{build_transfer, restriction};
 use crate::solve::multigrid::rap::galerkin;
-use crate::solve::multigrid::relax::{factor_x, factor_y, YLineOp};
+use crate::solve::multigrid::relax::{factor_y, YLineOp};
+use crate::solve::multigrid::xline::factor_x;
 use crate::solve::multigrid::{MgParams, Restriction, Smoother};
 use crate::solve::stencil9::Stencil9;
 use crate::solve::SolveError;

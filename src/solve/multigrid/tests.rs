@@ -568,8 +568,8 @@ fn kernel_timings() {
     let (x, r) = (&mut v.x, &mut v.r);
     time("copy (stream)", &mut || r.copy_from_slice(&b));
     time("xzebra both", &mut || {
-        relax::xzebra(&lev.a, &lev.xop, n, n, x, &b, 0);
-        relax::xzebra(&lev.a, &lev.xop, n, n, x, &b, 1);
+        xline::xzebra(&lev.a, &lev.xop, n, n, x, &b, 0);
+        xline::xzebra(&lev.a, &lev.xop, n, n, x, &b, 1);
     });
     time("yzebra both", &mut || {
         relax::yzebra(&lev.yop, n, n, x, &b, 0);
@@ -743,7 +743,7 @@ fn half_residuals_match_full_residual() {
         let mut x = vec![0.0; len];
         let (mut rf, mut rh) = (vec![0.0; len], vec![0.0; len]);
         for colour in [0, 1] {
-            relax::xzebra(&lev.a, &lev.xop, nx, ny, &mut x, &b, colour);
+            xline::xzebra(&lev.a, &lev.xop, nx, ny, &mut x, &b, colour);
             let full = relax::residual(&lev.a, None, nx, ny, &x, &b, &mut rf, relax::Zeroed::None);
             let zeroed = relax::Zeroed::Rows(colour);
             let half = relax::residual(&lev.a, Some(&lev.yop), nx, ny, &x, &b, &mut rh, zeroed);
@@ -874,7 +874,7 @@ fn an_x_line_half_sweep_solves_its_lines() {
             })
             .collect();
         let mut xop = Vec::new();
-        relax::factor_x(&a, nx, ny, &mut xop).unwrap();
+        xline::factor_x(&a, nx, ny, &mut xop).unwrap();
         let len = relax::padded_len(nx, ny);
         let pd = relax::pad(nx);
         let b: Vec<f64> = (0..len).map(|k| val(k, 11) - 0.5).collect();
@@ -882,7 +882,7 @@ fn an_x_line_half_sweep_solves_its_lines() {
             let mut x: Vec<f64> = (0..len).map(|k| val(k, 13)).collect();
             x[..pd].fill(0.0);
             x[pd + nx * ny..].fill(0.0);
-            relax::xzebra(&a, &xop, nx, ny, &mut x, &b, colour);
+            xline::xzebra(&a, &xop, nx, ny, &mut x, &b, colour);
             let at = |i: isize, j: isize| {
                 if i < 0 || j < 0 || i >= nx as isize || j >= ny as isize {
                     0.0
