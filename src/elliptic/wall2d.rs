@@ -19,6 +19,11 @@
 //! the control functions [19] of the remapped parameters and re-solves [24] from the current
 //! grid, until every node is within 1 % ([`TOLERANCE`]); two passes on the RAE2822 airfoil
 //! blocks. A pass whose solve fails or folds the grid is halved, then dropped.
+//!
+//! A side may also be a chain of wall and non-wall edges (an airfoil and its wake line,
+//! [`WallSide`]): the wall's ends inside the side are anchors too, with the first spacing the
+//! topology gives there, and along the non-wall part the correction fades out. Walls on
+//! opposite sides share their columns: each corrects the half next to it.
 
 use crate::algebraic::control2d::Control2;
 use crate::algebraic::transform::ParamGrid;
@@ -217,7 +222,7 @@ pub fn hold_wall_spacing<const D: usize>(
 }
 
 /// [`hold_wall_spacing`] along wall sides that may be chains of wall and non-wall edges
-/// ([`WallSide`]; [`targets`] says how the goals are made along the non-wall parts).
+/// ([`WallSide`], whose docs say how the goals are made along the non-wall parts).
 ///
 /// # Errors
 /// As [`hold_wall_spacing`]; [`Error::Input`] for a wall part outside its side.

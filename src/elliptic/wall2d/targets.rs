@@ -19,7 +19,12 @@
 use super::{column_distances, dist, Columns};
 use crate::grid::{Edge, Grid2};
 
-/// Where a wall holds along one side of a block.
+/// Where a wall holds along one side of a block. On a chain of wall and non-wall edges the
+/// targets are anchored at the side's ends (the side edges' profiles) and at every wall end
+/// inside the side (its first spacing, the column's own distances scaled to it near the wall),
+/// interpolated geometrically by arclength in between; along the non-wall part the
+/// correction's strength fades with a half cosine in the node index from the wall's end to the
+/// side's end, or halfway to the next wall.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WallSide {
     pub edge: Edge,
