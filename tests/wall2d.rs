@@ -172,6 +172,120 @@ fn the_nlr7301_holds_its_wall_spacing_on_the_wall_part_of_its_chains() {
     );
 }
 
+/// Block A over a curved wall `w` (a to m) and a flat non-wall edge `x` (m to b); block B
+/// under `x`, whose side `base` ends at m with a first spacing of 2e-3, as `left` starts at a.
+const PART_WALL: &str = "[[vertex]]\n\
+name = \"a\"\n\
+at = [0, 0]\n\
+[[vertex]]\n\
+name = \"m\"\n\
+at = [1, 0]\n\
+[[vertex]]\n\
+name = \"b\"\n\
+at = [2, 0]\n\
+[[vertex]]\n\
+name = \"c\"\n\
+at = [2, 1]\n\
+[[vertex]]\n\
+name = \"d\"\n\
+at = [0, 1]\n\
+[[vertex]]\n\
+name = \"ml\"\n\
+at = [1, -1]\n\
+[[vertex]]\n\
+name = \"bl\"\n\
+at = [2, -1]\n\
+[[edge]]\n\
+name = \"w\"\n\
+from = \"a\"\n\
+to = \"m\"\n\
+n = 17\n\
+curve = { type = \"spline\", points = [[0, 0], [0.5, 0.08], [1, 0]] }\n\
+wall = true\n\
+[[edge]]\n\
+name = \"x\"\n\
+from = \"m\"\n\
+to = \"b\"\n\
+n = 17\n\
+[[edge]]\n\
+name = \"top\"\n\
+from = \"d\"\n\
+to = \"c\"\n\
+n = 33\n\
+[[edge]]\n\
+name = \"left\"\n\
+from = \"a\"\n\
+to = \"d\"\n\
+n = 17\n\
+distribution = { type = \"vinokur\", first = 2e-3, last = 0.1 }\n\
+[[edge]]\n\
+name = \"right\"\n\
+from = \"b\"\n\
+to = \"c\"\n\
+n = 17\n\
+distribution = { type = \"vinokur\", first = 2e-2, last = 0.1 }\n\
+[[edge]]\n\
+name = \"base\"\n\
+from = \"ml\"\n\
+to = \"m\"\n\
+n = 17\n\
+distribution = { type = \"vinokur\", first = 0.1, last = 2e-3 }\n\
+[[edge]]\n\
+name = \"right2\"\n\
+from = \"bl\"\n\
+to = \"b\"\n\
+n = 17\n\
+[[edge]]\n\
+name = \"bottom2\"\n\
+from = \"ml\"\n\
+to = \"bl\"\n\
+n = 17\n\
+[[block]]\n\
+name = \"A\"\n\
+E1 = \"left\"\n\
+E2 = \"right\"\n\
+E3 = [\"w\", \"x\"]\n\
+E4 = \"top\"\n\
+[[block]]\n\
+name = \"B\"\n\
+E1 = \"base\"\n\
+E2 = \"right2\"\n\
+E3 = \"bottom2\"\n\
+E4 = \"x\"\n\
+";
+
+#[test]
+fn a_wall_ending_inside_a_side_takes_its_spacing_from_the_edge_through_the_vertex() {
+    // The wall's ends ask for 2e-3 (the side edge `left` at a, the base at m): 2e-3 at every
+    // wall node. `verify` runs the same passes from a scrambled, folded start and gets the
+    // same grid to the passes' tolerance.
+    let d = tempfile::tempdir().unwrap();
+    let r = run(d.path(), PART_WALL);
+    let w = &r["blocks"][0]["wall"][0];
+    assert_eq!(w["edge"], "E3");
+    assert_eq!(w["nodes"], 16);
+    let h = first_row(d.path(), 0);
+    for &x in &h[1..=16] {
+        assert!((x / 2e-3 - 1.0).abs() < 0.01, "{x}: {h:?}");
+    }
+    // without the wall the curved wall's first cells are 1.4 to 2 times larger or smaller
+    let plain = tempfile::tempdir().unwrap();
+    run(plain.path(), &PART_WALL.replace("wall = true\n", ""));
+    let p = first_row(plain.path(), 0);
+    let off = p[1..=16]
+        .iter()
+        .map(|x| (x / 2e-3).ln().abs())
+        .fold(0.0, f64::max);
+    assert!(off > 0.3, "{p:?}");
+    let o = ellipgrid(d.path(), &["verify", "c.toml", "--report", "v.json", "-q"]);
+    let v: Value =
+        serde_json::from_str(&fs::read_to_string(d.path().join("v.json")).unwrap()).unwrap();
+    let start = &v["blocks"][0]["start"];
+    assert!(start["start_folded"].as_u64().unwrap() > 0, "{}", text(&o));
+    let diff = start["difference"]["max"].as_f64().unwrap();
+    assert!(diff < start["limit"].as_f64().unwrap(), "{start}");
+}
+
 #[test]
 fn a_single_block_holds_its_wall_spacing_over_a_bump() {
     // The bump channel of examples/airfoil_wall.toml at 97 x 33 nodes.
