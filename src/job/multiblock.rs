@@ -147,7 +147,11 @@ fn grid_group(
         .map_err(|m| Error::input(format!("{file}: [solver]"), m))?;
     let lists = case.group_points(g)?;
     let params = &spec.picard;
-    let partial = partial_walls(case, topo, g, &place)?;
+    // (surface blocks hold no wall: their own error below)
+    let partial = match kind {
+        BlockKind::Surface => None,
+        _ => partial_walls(case, topo, g, &place)?,
+    };
     let mut out = Vec::new();
     let mut finish = |b: usize, block: Block, picard: Option<&PicardInfo>, q, d, steps, wall| {
         let dims = block.dims();
