@@ -8,7 +8,7 @@
 //!
 //! Cases: `naca0012_ogrid` as shipped (4 × 65 × 49) and with every edge at 257 nodes
 //! (4 × 257²); `rae2822_cgrid` as shipped and with every node count doubled (minus one);
-//! `nlr7301_flap` and `artificial_boundary` as shipped; `naca0012_oneblock` (one block with a
+//! `nlr7301_flap` as shipped and without its `wall = true` lines; `artificial_boundary` as shipped; `naca0012_oneblock` (one block with a
 //! periodic cut, 257 × 49; not with `andersonN`, whose steps fold it). `--quick` drops
 //! the refined cases.
 //! Each case runs `--repeat` times (default 3); the best wall-clock time is printed for each
@@ -172,6 +172,13 @@ fn main() {
         );
     }
     run("nlr7301_flap", "nlr7301_flap.toml", same, repeat);
+    // the same without its held wall spacing (the chains' `wall = true`), side by side
+    run(
+        "nlr7301_flap no wall",
+        "nlr7301_flap.toml",
+        |t| t.replace("\nwall = true\n", "\n"),
+        repeat,
+    );
     run(
         "artificial_boundary",
         "artificial_boundary.toml",

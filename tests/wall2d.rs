@@ -81,6 +81,211 @@ fn the_rae2822_c_grid_holds_its_wall_spacing_along_the_whole_airfoil() {
     }
 }
 
+/// First spacings off side j = 0 of block `b` of the grid in `dir`, at every node.
+fn first_row(dir: &Path, b: usize) -> Vec<f64> {
+    let grid = read_plot3d(&dir.join("g.x")).unwrap();
+    let Block::Planar(g) = &grid.blocks[b] else {
+        panic!("a planar block")
+    };
+    (0..g.ni())
+        .map(|i| {
+            let (p, q) = (g.point(i, 0), g.point(i, 1));
+            ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt()
+        })
+        .collect()
+}
+
+#[test]
+fn the_nlr7301_holds_its_wall_spacing_on_the_wall_part_of_its_chains() {
+    // Three block sides are chains of a wall and a wake line: `upper` (main element's upper
+    // surface, then its wake), `gap` (flap's aft upper surface, then its wake) and
+    // `lower_aft` (the flap's wake, then its lower surface). Without `wall` the first
+    // spacing runs up to 1.2e-4 over the main element; with it 1e-5 within 1 % on every
+    // wall node (1e-5 at the cuts and, at the trailing edges, the bases' 1e-5).
+    let case = fs::read_to_string(root().join("examples/nlr7301_flap.toml"))
+        .unwrap()
+        .replace("../data/", &format!("{}/data/", root().display()));
+    assert_eq!(case.matches("\nwall = true\n").count(), 3);
+    let held = tempfile::tempdir().unwrap();
+    let r = run(held.path(), &case);
+    let plain = tempfile::tempdir().unwrap();
+    let p = run(plain.path(), &case.replace("\nwall = true\n", "\n"));
+    // (block, its wall nodes on side E3 without the block corners, the wall's node range)
+    for (b, name, nodes, wall) in [
+        (0, "upper", 128, 1..=128),
+        (3, "lower_aft", 64, 72..=135),
+        (5, "gap", 40, 1..=40),
+    ] {
+        let block = &r["blocks"][b];
+        assert_eq!(block["name"], name);
+        let w = &block["wall"][0];
+        assert_eq!(w["edge"], "E3");
+        assert_eq!(w["nodes"], nodes);
+        let f = |k: &str| w[k].as_f64().unwrap();
+        assert!(
+            f("ratio_min") > 0.99 && f("ratio_max") < 1.01,
+            "{name}: {w}"
+        );
+        let h = first_row(held.path(), b);
+        for &x in &h[wall.clone()] {
+            assert!((x / 1e-5 - 1.0).abs() < 0.01, "{name}: {x}");
+        }
+        // The join: neighbouring first spacings along the whole side (wall and wake) differ
+        // by at most 30 % (1.11, 1.25, 1.14; without `wall` 1.09, 1.27, 1.21).
+        let jump = h[1..h.len() - 1]
+            .windows(2)
+            .map(|p| (p[1] / p[0]).max(p[0] / p[1]))
+            .fold(0.0, f64::max);
+        assert!(jump < 1.3, "{name}: {jump}");
+        assert_eq!(block["quality"]["folded_cells"], 0);
+        assert!(block["picard"]["converged"].as_bool().unwrap());
+    }
+    let plain_upper = first_row(plain.path(), 0);
+    let worst = plain_upper[1..=128].iter().fold(0.0f64, |a, &x| a.max(x));
+    assert!(worst > 1e-4, "without wall: {worst}");
+    // Every block fold-free; across the main wake (upper | main_base) the first spacings
+    // now nearly match (ratio 1.65 at most, 18.4 without), and the wake lines still cross
+    // it within half a degree.
+    for b in r["blocks"].as_array().unwrap() {
+        assert_eq!(b["quality"]["folded_cells"], 0, "{}", b["name"]);
+    }
+    let wake = |rep: &Value, k: &str| {
+        let f = rep["interfaces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["edge"] == "wake_main_up1")
+            .unwrap()
+            .clone();
+        f[k].as_f64().unwrap()
+    };
+    assert!(
+        wake(&r, "spacing_ratio_max") < 2.0,
+        "{}",
+        wake(&r, "spacing_ratio_max")
+    );
+    assert!(wake(&p, "spacing_ratio_max") > 10.0);
+    assert!(
+        wake(&r, "kink_max_deg") < 0.5,
+        "{}",
+        wake(&r, "kink_max_deg")
+    );
+}
+
+/// Block A over a curved wall `w` (a to m) and a flat non-wall edge `x` (m to b); block B
+/// under `x`, whose side `base` ends at m with a first spacing of 2e-3, as `left` starts at a.
+const PART_WALL: &str = "[[vertex]]\n\
+name = \"a\"\n\
+at = [0, 0]\n\
+[[vertex]]\n\
+name = \"m\"\n\
+at = [1, 0]\n\
+[[vertex]]\n\
+name = \"b\"\n\
+at = [2, 0]\n\
+[[vertex]]\n\
+name = \"c\"\n\
+at = [2, 1]\n\
+[[vertex]]\n\
+name = \"d\"\n\
+at = [0, 1]\n\
+[[vertex]]\n\
+name = \"ml\"\n\
+at = [1, -1]\n\
+[[vertex]]\n\
+name = \"bl\"\n\
+at = [2, -1]\n\
+[[edge]]\n\
+name = \"w\"\n\
+from = \"a\"\n\
+to = \"m\"\n\
+n = 17\n\
+curve = { type = \"spline\", points = [[0, 0], [0.5, 0.08], [1, 0]] }\n\
+wall = true\n\
+[[edge]]\n\
+name = \"x\"\n\
+from = \"m\"\n\
+to = \"b\"\n\
+n = 17\n\
+[[edge]]\n\
+name = \"top\"\n\
+from = \"d\"\n\
+to = \"c\"\n\
+n = 33\n\
+[[edge]]\n\
+name = \"left\"\n\
+from = \"a\"\n\
+to = \"d\"\n\
+n = 17\n\
+distribution = { type = \"vinokur\", first = 2e-3, last = 0.1 }\n\
+[[edge]]\n\
+name = \"right\"\n\
+from = \"b\"\n\
+to = \"c\"\n\
+n = 17\n\
+distribution = { type = \"vinokur\", first = 2e-2, last = 0.1 }\n\
+[[edge]]\n\
+name = \"base\"\n\
+from = \"ml\"\n\
+to = \"m\"\n\
+n = 17\n\
+distribution = { type = \"vinokur\", first = 0.1, last = 2e-3 }\n\
+[[edge]]\n\
+name = \"right2\"\n\
+from = \"bl\"\n\
+to = \"b\"\n\
+n = 17\n\
+[[edge]]\n\
+name = \"bottom2\"\n\
+from = \"ml\"\n\
+to = \"bl\"\n\
+n = 17\n\
+[[block]]\n\
+name = \"A\"\n\
+E1 = \"left\"\n\
+E2 = \"right\"\n\
+E3 = [\"w\", \"x\"]\n\
+E4 = \"top\"\n\
+[[block]]\n\
+name = \"B\"\n\
+E1 = \"base\"\n\
+E2 = \"right2\"\n\
+E3 = \"bottom2\"\n\
+E4 = \"x\"\n\
+";
+
+#[test]
+fn a_wall_ending_inside_a_side_takes_its_spacing_from_the_edge_through_the_vertex() {
+    // The wall's ends ask for 2e-3 (the side edge `left` at a, the base at m): 2e-3 at every
+    // wall node. `verify` runs the same passes from a scrambled, folded start and gets the
+    // same grid to the passes' tolerance.
+    let d = tempfile::tempdir().unwrap();
+    let r = run(d.path(), PART_WALL);
+    let w = &r["blocks"][0]["wall"][0];
+    assert_eq!(w["edge"], "E3");
+    assert_eq!(w["nodes"], 16);
+    let h = first_row(d.path(), 0);
+    for &x in &h[1..=16] {
+        assert!((x / 2e-3 - 1.0).abs() < 0.01, "{x}: {h:?}");
+    }
+    // without the wall the curved wall's first cells are 1.4 to 2 times larger or smaller
+    let plain = tempfile::tempdir().unwrap();
+    run(plain.path(), &PART_WALL.replace("wall = true\n", ""));
+    let p = first_row(plain.path(), 0);
+    let off = p[1..=16]
+        .iter()
+        .map(|x| (x / 2e-3).ln().abs())
+        .fold(0.0, f64::max);
+    assert!(off > 0.3, "{p:?}");
+    let o = ellipgrid(d.path(), &["verify", "c.toml", "--report", "v.json", "-q"]);
+    let v: Value =
+        serde_json::from_str(&fs::read_to_string(d.path().join("v.json")).unwrap()).unwrap();
+    let start = &v["blocks"][0]["start"];
+    assert!(start["start_folded"].as_u64().unwrap() > 0, "{}", text(&o));
+    let diff = start["difference"]["max"].as_f64().unwrap();
+    assert!(diff < start["limit"].as_f64().unwrap(), "{start}");
+}
+
 #[test]
 fn a_single_block_holds_its_wall_spacing_over_a_bump() {
     // The bump channel of examples/airfoil_wall.toml at 97 x 33 nodes.
@@ -118,7 +323,8 @@ fn wall_input_errors_exit_2_naming_the_block_and_the_side() {
         .replacen("kind = \"surface\"", "kind = \"surface\"\nwall = \"E3\"", 1)
         .replace("../data/", &format!("{}/data/", root().display()));
     rejects(&surface, &["block 'wing_pylon'", "wall", "surface blocks"]);
-    // A side that is a chain of a wall edge and an edge that is not.
+    // A side that is a chain of a wall edge and an edge that is not, with nothing at their
+    // common vertex.
     let chain = "\
 [[vertex]]\nname = \"a\"\nat = [0, 0]\n[[vertex]]\nname = \"m\"\nat = [1, 0]\n\
 [[vertex]]\nname = \"b\"\nat = [2, 0]\n[[vertex]]\nname = \"c\"\nat = [2, 1]\n\
@@ -129,7 +335,19 @@ fn wall_input_errors_exit_2_naming_the_block_and_the_side() {
 [[edge]]\nname = \"left\"\nfrom = \"a\"\nto = \"d\"\nn = 5\n\
 [[edge]]\nname = \"right\"\nfrom = \"b\"\nto = \"c\"\nn = 5\n\
 [[block]]\nname = \"blk\"\nE1 = \"left\"\nE2 = \"right\"\nE3 = [\"w\", \"x\"]\nE4 = \"top\"\n";
-    rejects(chain, &["block 'blk'", "E3", "'w'", "'x'", "wall"]);
+    // The wall ends at vertex 'm' inside the side, and no other edge there gives the first
+    // spacing to hold at that end.
+    rejects(
+        chain,
+        &[
+            "block 'blk'",
+            "E3",
+            "'w'",
+            "'x'",
+            "vertex 'm'",
+            "no other edge",
+        ],
+    );
     // The same with both edges walls runs.
     let d = tempfile::tempdir().unwrap();
     let both = chain.replace(

@@ -48,33 +48,27 @@ pub(super) fn build(case: &Case, place: &str) -> Result<Option<Topology>> {
     }
     let mut topo = Topology::new(vertices, edges, &blocks, place)?;
     check_bcs(&topo, place)?;
-    // Edge flags: a side is orthogonal (holds a wall spacing) if all its edges are; mixed
-    // chains are errors.
+    // Edge flags: a side is orthogonal if all its edges are (a partly orthogonal chain is an
+    // error); a side holds a wall spacing if any of its edges is a wall (on a chain of wall
+    // and non-wall edges, on the wall part: job::multiblock_wall).
     for b in 0..topo.blocks.len() {
         for e in Edge::ALL {
             let uses = &topo.blocks[b].sides[e.index()];
             let orth: Vec<bool> = uses.iter().map(|u| topo.edges[u.edge].orthogonal).collect();
-            let wall: Vec<bool> = uses.iter().map(|u| topo.edges[u.edge].wall).collect();
-            for (flags, what, holds) in [
-                (orth, "orthogonal", "orthogonality holds"),
-                (wall, "walls", "a wall spacing holds"),
-            ] {
-                if flags.iter().all(|f| *f) {
-                    let blk = &mut topo.blocks[b];
-                    match what {
-                        "orthogonal" => blk.orthogonal[e.index()] = true,
-                        _ => blk.wall[e.index()] = true,
-                    }
-                } else if flags.iter().any(|f| *f) {
-                    return Err(Error::input(
-                        topo.block_place(place, b),
-                        format!(
-                            "side {e} is the chain {} of which only some edges are {what}; \
-                             {holds} along a whole side",
-                            topo.chain_names(b, e)
-                        ),
-                    ));
-                }
+            if uses.iter().any(|u| topo.edges[u.edge].wall) {
+                topo.blocks[b].wall[e.index()] = true;
+            }
+            if orth.iter().all(|f| *f) {
+                topo.blocks[b].orthogonal[e.index()] = true;
+            } else if orth.iter().any(|f| *f) {
+                return Err(Error::input(
+                    topo.block_place(place, b),
+                    format!(
+                        "side {e} is the chain {} of which only some edges are orthogonal; \
+                         orthogonality holds along a whole side",
+                        topo.chain_names(b, e)
+                    ),
+                ));
             }
         }
         let dims = topo.dims(b);

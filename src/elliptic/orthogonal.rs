@@ -205,7 +205,7 @@ pub fn orthogonal_steps<const D: usize>(
 }
 
 /// The three steps, step 1 from `start` (transfinite if None).
-fn steps<const D: usize>(
+pub(crate) fn steps<const D: usize>(
     b: &Boundary2<D>,
     start: Option<Grid2<D>>,
     orthogonal: [bool; 4],

@@ -19,6 +19,11 @@
 //! the control functions [19] of the remapped parameters and re-solves [24] from the current
 //! grid, until every node is within 1 % ([`TOLERANCE`]); two passes on the RAE2822 airfoil
 //! blocks. A pass whose solve fails or folds the grid is halved, then dropped.
+//!
+//! A side may also be a chain of wall and non-wall edges (an airfoil and its wake line,
+//! [`WallSide`]): the wall's ends inside the side are anchors too, with the first spacing the
+//! topology gives there, and along the non-wall part the correction fades out. Walls on
+//! opposite sides share their columns: each corrects the half next to it.
 
 use crate::algebraic::control2d::Control2;
 use crate::algebraic::transform::ParamGrid;
@@ -30,6 +35,10 @@ use crate::quality::quality_any;
 use crate::solve::LinearSolver;
 use crate::{Error, Result};
 use serde::Serialize;
+
+mod targets;
+use targets::{blend_targets, Targets};
+pub use targets::{WallPart, WallSide};
 
 /// Correction passes at most (each a re-solve from the current grid).
 pub const MAX_PASSES: usize = 12;
@@ -138,68 +147,40 @@ fn column_distances<const D: usize>(g: &Grid2<D>, cols: &Columns, c: usize) -> V
         .collect()
 }
 
-/// Target distances from the wall: the side edges' profiles interpolated by arclength along
-/// the wall.
-struct Targets {
-    /// Distance from the wall of node j on the side edges at column 0 and at the last column.
-    prof: [Vec<f64>; 2],
-    /// Arclength fraction of each wall node.
-    w: Vec<f64>,
-}
-
-impl Targets {
-    fn new<const D: usize>(g: &Grid2<D>, cols: &Columns) -> Self {
-        let n = cols.count();
-        let prof = [
-            column_distances(g, cols, 0),
-            column_distances(g, cols, n - 1),
-        ];
-        let mut w = vec![0.0; n];
-        for c in 1..n {
-            let (a, b) = (cols.node(c - 1, 0), cols.node(c, 0));
-            w[c] = w[c - 1] + dist(g.point(a.0, a.1), g.point(b.0, b.1));
-        }
-        let total = w[n - 1];
-        w.iter_mut().for_each(|x| *x /= total);
-        Targets { prof, w }
-    }
-
-    fn at(&self, c: usize, j: usize) -> f64 {
-        if j == 0 {
-            return 0.0;
-        }
-        self.prof[0][j].powf(1.0 - self.w[c]) * self.prof[1][j].powf(self.w[c])
-    }
-}
-
-/// The distances a column should reach: d*^ψ d₀^{1−ψ}, from the uncorrected grid's distances
-/// `d0` and the interpolated side profile `dstar`, with ψ fading with the node index j as a
-/// half cosine from 1 at the first node off the wall (flat there, so that the spacings near
-/// the wall keep the side edges' growth) to 0 at [`FADE`] of the column.
-fn blend_targets(d0: &[f64], dstar: &[f64]) -> Vec<f64> {
-    let n = d0.len();
-    let end = (FADE * (n - 1) as f64).max(2.0);
-    (0..n)
-        .map(|j| {
-            let x = ((j.max(1) - 1) as f64 / (end - 1.0)).min(1.0);
-            let psi = 0.5 * (1.0 + (std::f64::consts::PI * x).cos());
-            dstar[j].powf(psi) * d0[j].powf(1.0 - psi)
-        })
-        .collect()
-}
-
 /// One pass over the interior columns of one wall: remaps the wall-normal parameter of `pg`
 /// from the distances in `x` towards the column goals (filled from the first grid seen, the
-/// uncorrected one, if empty). Returns the largest |ln(goal / d)| before the pass.
+/// uncorrected one, if empty; columns of strength 0 are left alone). Returns the largest
+/// |ln(goal / d)| before the pass.
 fn remap_wall<const D: usize>(
     pg: &mut ParamGrid,
     x: &Grid2<D>,
     cols: &Columns,
     targets: &Targets,
     goals: &mut Vec<Vec<f64>>,
+    fade: f64,
+    half: bool,
 ) -> f64 {
+    // with an opposite wall only the half of each column next to this one moves
+    let last = if half {
+        (cols.depth() - 1) / 2
+    } else {
+        cols.depth() - 1
+    };
     let mut err = 0.0f64;
     for c in 1..cols.count() - 1 {
+        let strength = targets.strength(c);
+        if goals.len() < c {
+            let d = column_distances(x, cols, c);
+            let t: Vec<f64> = (0..cols.depth()).map(|j| targets.at(c, j)).collect();
+            goals.push(if strength > 0.0 {
+                blend_targets(&d, &t, strength, fade)
+            } else {
+                Vec::new()
+            });
+        }
+        if goals[c - 1].is_empty() {
+            continue;
+        }
         let idx: Vec<usize> = (0..cols.depth())
             .map(|j| {
                 let (i, jj) = cols.node(c, j);
@@ -208,11 +189,8 @@ fn remap_wall<const D: usize>(
             .collect();
         let d = column_distances(x, cols, c);
         let mut v: Vec<f64> = idx.iter().map(|&p| cols.param(pg, p)).collect();
-        if goals.len() < c {
-            let t: Vec<f64> = (0..cols.depth()).map(|j| targets.at(c, j)).collect();
-            goals.push(blend_targets(&d, &t));
-        }
-        err = err.max(remap_column(&mut v, &d, &goals[c - 1]));
+        let k = last + 1;
+        err = err.max(remap_column(&mut v[..k], &d[..k], &goals[c - 1][..k]));
         for (&p, y) in idx.iter().zip(&v) {
             cols.set_param(pg, p, *y);
         }
@@ -228,18 +206,42 @@ fn remap_wall<const D: usize>(
 /// # Errors
 /// [`Error::Input`] for a grid of fewer than 3 × 3 nodes, and the errors of the final solve.
 pub fn hold_wall_spacing<const D: usize>(
-    mut x: Grid2<D>,
-    mut pg: ParamGrid,
+    x: Grid2<D>,
+    pg: ParamGrid,
     walls: [bool; 4],
     solver: &mut dyn LinearSolver,
     params: &PicardParams,
     place: &str,
 ) -> Result<(Grid2<D>, Option<PicardInfo>)> {
-    let (ni, nj) = (x.ni(), x.nj());
-    let cols: Vec<Columns> = Edge::ALL
+    let sides: Vec<WallSide> = Edge::ALL
         .into_iter()
         .filter(|e| walls[e.index()])
-        .map(|edge| Columns { edge, ni, nj })
+        .map(WallSide::whole)
+        .collect();
+    hold_wall_spacing_on(x, pg, &sides, solver, params, place)
+}
+
+/// [`hold_wall_spacing`] along wall sides that may be chains of wall and non-wall edges
+/// ([`WallSide`], whose docs say how the goals are made along the non-wall parts).
+///
+/// # Errors
+/// As [`hold_wall_spacing`]; [`Error::Input`] for a wall part outside its side.
+pub fn hold_wall_spacing_on<const D: usize>(
+    mut x: Grid2<D>,
+    mut pg: ParamGrid,
+    sides: &[WallSide],
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    place: &str,
+) -> Result<(Grid2<D>, Option<PicardInfo>)> {
+    let (ni, nj) = (x.ni(), x.nj());
+    let cols: Vec<Columns> = sides
+        .iter()
+        .map(|s| Columns {
+            edge: s.edge,
+            ni,
+            nj,
+        })
         .collect();
     if cols.is_empty() {
         return Ok((x, None));
@@ -250,7 +252,22 @@ pub fn hold_wall_spacing<const D: usize>(
             "a wall spacing needs at least 3 × 3 nodes (interior columns to hold it on)",
         ));
     }
-    let targets: Vec<Targets> = cols.iter().map(|c| Targets::new(&x, c)).collect();
+    for (s, c) in sides.iter().zip(&cols) {
+        check_part(s, c.count(), place)?;
+    }
+    // Opposite walls (a slot between two walls) share their columns: each corrects the half
+    // next to it and fades out by the middle.
+    let opposite: Vec<bool> = sides
+        .iter()
+        .map(|s| sides.iter().any(|o| o.edge.index() == s.edge.index() ^ 1))
+        .collect();
+    let fade = |o: bool| if o { FADE.min(0.5) } else { FADE };
+    let targets: Vec<Targets> = sides
+        .iter()
+        .zip(&cols)
+        .zip(&opposite)
+        .map(|((s, c), &o)| Targets::new(&x, c, s.part.as_ref(), fade(o)))
+        .collect();
     let mut goals: Vec<Vec<Vec<f64>>> = vec![Vec::new(); cols.len()];
     let loose = PicardParams {
         tolerance: params.tolerance.max(LOOSE_TOLERANCE),
@@ -267,7 +284,8 @@ pub fn hold_wall_spacing<const D: usize>(
             .iter()
             .zip(&targets)
             .zip(&mut goals)
-            .map(|((c, t), g)| remap_wall(&mut trial, &x, c, t, g))
+            .zip(&opposite)
+            .map(|(((c, t), g), &o)| remap_wall(&mut trial, &x, c, t, g, fade(o), o))
             .fold(0.0, f64::max);
         if err <= TOLERANCE {
             break;
@@ -317,24 +335,30 @@ pub fn hold_wall_spacing<const D: usize>(
 /// The first spacing along wall edge `edge` of grid `g` against its targets (the side edges'
 /// profiles interpolated by wall arclength), over the interior wall nodes.
 pub fn wall_spacing<const D: usize>(g: &Grid2<D>, edge: Edge) -> WallSpacing2 {
+    wall_spacing_on(g, &WallSide::whole(edge))
+}
+
+/// The first spacing along the wall part of side `side` of grid `g` against its targets, over
+/// the wall nodes that are not block corners.
+pub fn wall_spacing_on<const D: usize>(g: &Grid2<D>, side: &WallSide) -> WallSpacing2 {
     let cols = Columns {
-        edge,
+        edge: side.edge,
         ni: g.ni(),
         nj: g.nj(),
     };
-    let targets = Targets::new(g, &cols);
     let mut out = WallSpacing2 {
-        edge: edge.to_string(),
+        edge: side.edge.to_string(),
         nodes: 0,
         first_min: f64::INFINITY,
         first_max: 0.0,
         ratio_min: f64::INFINITY,
         ratio_max: 0.0,
     };
-    if cols.depth() < 2 {
+    if cols.depth() < 2 || cols.count() < 2 || check_part(side, cols.count(), "").is_err() {
         return out;
     }
-    for c in 1..cols.count().saturating_sub(1) {
+    let targets = Targets::new(g, &cols, side.part.as_ref(), FADE);
+    for c in (1..cols.count().saturating_sub(1)).filter(|&c| targets.on_wall(c)) {
         let (a, b) = (cols.node(c, 0), cols.node(c, 1));
         let h = dist(g.point(a.0, a.1), g.point(b.0, b.1));
         let r = h / targets.at(c, 1);
@@ -354,6 +378,29 @@ pub fn wall_spacings<const D: usize>(g: &Grid2<D>, walls: [bool; 4]) -> Vec<Wall
         .filter(|e| walls[e.index()])
         .map(|e| wall_spacing(g, e))
         .collect()
+}
+
+/// A wall part's runs and ends must lie on its side of `n` nodes, runs ascending.
+fn check_part(side: &WallSide, n: usize, place: &str) -> Result<()> {
+    let Some(p) = &side.part else { return Ok(()) };
+    let runs_ok = p.runs.iter().all(|r| r[0] < r[1] && r[1] < n)
+        && p.runs.windows(2).all(|w| w[0][1] < w[1][0])
+        && !p.runs.is_empty();
+    let ends_ok = p
+        .ends
+        .iter()
+        .all(|&(c, h)| c < n && h > 0.0 && h.is_finite());
+    if runs_ok && ends_ok {
+        Ok(())
+    } else {
+        Err(Error::input(
+            place,
+            format!(
+                "side {}: wall runs {:?} and end spacings {:?} do not fit its {n} nodes",
+                side.edge, p.runs, p.ends
+            ),
+        ))
+    }
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@
 pub mod floating;
 mod mesh;
 pub mod multiblock;
+pub(crate) mod multiblock_wall;
 pub mod multivolume;
 pub mod smooth;
 pub mod verify;

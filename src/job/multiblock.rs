@@ -3,12 +3,13 @@
 //! floats, as one block periodic in i) is gridded as one block, the groups in parallel;
 //! shared edges give bit-identical nodes; the report gives the smoothness of every interface.
 
+use super::multiblock_wall::{grid_block_walls, partial_walls};
 use super::{surface_distance, BlockReport};
 use crate::case::{BlockKind, LoadedCase};
 use crate::elliptic::orthogonal::{grid_block_sides, Sides};
 use crate::elliptic::periodic;
 use crate::elliptic::picard::PicardInfo;
-use crate::elliptic::wall2d::{wall_spacings, WallSpacing2};
+use crate::elliptic::wall2d::{wall_spacing_on, wall_spacings, WallSide, WallSpacing2};
 use crate::grid::boundary::Boundary2;
 use crate::grid::topology::{Group, Topology};
 use crate::grid::Grid2;
@@ -146,6 +147,11 @@ fn grid_group(
         .map_err(|m| Error::input(format!("{file}: [solver]"), m))?;
     let lists = case.group_points(g)?;
     let params = &spec.picard;
+    // (surface blocks hold no wall: their own error below)
+    let partial = match kind {
+        BlockKind::Surface => None,
+        _ => partial_walls(case, topo, g, &place)?,
+    };
     let mut out = Vec::new();
     let mut finish = |b: usize, block: Block, picard: Option<&PicardInfo>, q, d, steps, wall| {
         let dims = block.dims();
@@ -166,9 +172,20 @@ fn grid_group(
     match kind {
         BlockKind::Planar => {
             let bnd = case.planar_from(lists, &place)?;
-            let r = solve_group(&bnd, g, case, solver.as_mut(), params, &place)?;
+            let r = solve_group(
+                &bnd,
+                g,
+                case,
+                partial.as_deref(),
+                solver.as_mut(),
+                params,
+                &place,
+            )?;
             // The wall spacing along the group's sides (a row's pieces share its report).
-            let walls: Vec<WallSpacing2> = wall_spacings(&r.grid, g.wall);
+            let walls: Vec<WallSpacing2> = match &partial {
+                Some(w) => w.iter().map(|s| wall_spacing_on(&r.grid, s)).collect(),
+                None => wall_spacings(&r.grid, g.wall),
+            };
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality2d(&grid);
@@ -187,9 +204,20 @@ fn grid_group(
         BlockKind::Minimal => {
             let pts = lists.map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
             let bnd = Boundary2::new(pts, &place)?;
-            let r = solve_group(&bnd, g, case, solver.as_mut(), params, &place)?;
+            let r = solve_group(
+                &bnd,
+                g,
+                case,
+                partial.as_deref(),
+                solver.as_mut(),
+                params,
+                &place,
+            )?;
             // The wall spacing along the group's sides (a row's pieces share its report).
-            let walls: Vec<WallSpacing2> = wall_spacings(&r.grid, g.wall);
+            let walls: Vec<WallSpacing2> = match &partial {
+                Some(w) => w.iter().map(|s| wall_spacing_on(&r.grid, s)).collect(),
+                None => wall_spacings(&r.grid, g.wall),
+            };
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality_surface(&grid);
@@ -281,11 +309,15 @@ fn solve_group<const D: usize>(
     bnd: &Boundary2<D>,
     g: &Group,
     case: &LoadedCase,
+    partial: Option<&[WallSide]>,
     solver: &mut dyn solve::LinearSolver,
     params: &crate::elliptic::picard::PicardParams,
     place: &str,
 ) -> Result<crate::elliptic::picard::Solved<Grid2<D>>> {
     let ctrl = case.case.solver.control;
+    if let (Some(walls), false) = (partial, g.periodic) {
+        return grid_block_walls(bnd, None, g.orthogonal, walls, ctrl, solver, params, place);
+    }
     if g.periodic {
         if g.wall.contains(&true) {
             return Err(Error::input(

@@ -14,11 +14,12 @@ use crate::elliptic::periodic;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::volume::grid_volume;
 use crate::elliptic::wall::LOOSE_TOLERANCE;
-use crate::elliptic::wall2d::LOOSE_TOLERANCE as LOOSE_TOLERANCE_2D;
+use crate::elliptic::wall2d::{WallSide, LOOSE_TOLERANCE as LOOSE_TOLERANCE_2D};
 use crate::grid::boundary::Boundary2;
 use crate::grid::faces::Faces;
 use crate::grid::Grid2;
 use crate::io::Block;
+use crate::job::multiblock_wall::{grid_block_walls, partial_walls};
 use crate::job::volume::corrections;
 use crate::job::{generate, Generated};
 use crate::quality::quality3d::quality3d;
@@ -141,9 +142,11 @@ type Solve<T> = std::result::Result<(T, PicardInfo), String>;
 type Unit<T> = (usize, usize, Solve<T>);
 
 /// A 2D unit (block or group) from the scrambled transfinite start of its boundary.
+#[allow(clippy::too_many_arguments)]
 fn start_2d<const D: usize>(
     b: &Boundary2<D>,
     sides: Sides,
+    partial: Option<&[WallSide]>,
     periodic: bool,
     case: &LoadedCase,
     seed: u64,
@@ -164,15 +167,27 @@ fn start_2d<const D: usize>(
     let cells = (start.ni() - 1) * (start.nj() - 1);
     let bad = folded(&start);
     let mut solver = linear(case)?;
-    let r = grid_block_sides(
-        b,
-        Some(start),
-        sides,
-        spec.control,
-        solver.as_mut(),
-        &spec.picard,
-        place,
-    );
+    let r = match partial {
+        Some(walls) => grid_block_walls(
+            b,
+            Some(start),
+            sides.orthogonal,
+            walls,
+            spec.control,
+            solver.as_mut(),
+            &spec.picard,
+            place,
+        ),
+        None => grid_block_sides(
+            b,
+            Some(start),
+            sides,
+            spec.control,
+            solver.as_mut(),
+            &spec.picard,
+            place,
+        ),
+    };
     Ok((cells, bad, solved(r.map(|r| (r.grid, r.picard)))?))
 }
 
@@ -227,13 +242,16 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 orthogonal: g.orthogonal,
                 wall: g.wall,
             };
+            let partial = partial_walls(case, topo, &g, &place)?;
+            let partial = partial.as_deref();
             let (cells, bad, r) = match case.case.blocks[members[0]].kind {
                 BlockKind::Minimal => {
                     let pts = lists.map(|p| p.iter().map(|q| [q.x, q.y, q.z]).collect());
                     let bnd = Boundary2::new(pts, &place)?;
-                    let (c, f, r) = start_2d(&bnd, sides, g.periodic, case, seed, &place, |s| {
-                        quality_surface(s).folded_cells
-                    })?;
+                    let (c, f, r) =
+                        start_2d(&bnd, sides, partial, g.periodic, case, seed, &place, |s| {
+                            quality_surface(s).folded_cells
+                        })?;
                     let cut = |x: Grid2<3>| {
                         let pieces = g.pieces.iter();
                         pieces.map(|p| Block::Surface(p.cut(&x))).collect()
@@ -242,9 +260,10 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 }
                 _ => {
                     let bnd = case.planar_from(lists, &place)?;
-                    let (c, f, r) = start_2d(&bnd, sides, g.periodic, case, seed, &place, |s| {
-                        quality2d(s).folded_cells
-                    })?;
+                    let (c, f, r) =
+                        start_2d(&bnd, sides, partial, g.periodic, case, seed, &place, |s| {
+                            quality2d(s).folded_cells
+                        })?;
                     let cut = |x: Grid2<2>| {
                         let pieces = g.pieces.iter();
                         pieces.map(|p| Block::Planar(p.cut(&x))).collect()
@@ -262,14 +281,14 @@ fn starts(case: &LoadedCase, seed: u64, g: &Generated) -> Result<Vec<StartRun>> 
                 BlockKind::Surface => continue,
                 BlockKind::Planar => {
                     let b = case.planar_boundary(k)?;
-                    let (c, f, r) = start_2d(&b, sides, false, case, seed, &place, |s| {
+                    let (c, f, r) = start_2d(&b, sides, None, false, case, seed, &place, |s| {
                         quality2d(s).folded_cells
                     })?;
                     (c, f, r.map(|(x, p)| (vec![Block::Planar(x)], p)))
                 }
                 BlockKind::Minimal => {
                     let b = case.minimal_boundary(k)?;
-                    let (c, f, r) = start_2d(&b, sides, false, case, seed, &place, |s| {
+                    let (c, f, r) = start_2d(&b, sides, None, false, case, seed, &place, |s| {
                         quality_surface(s).folded_cells
                     })?;
                     (c, f, r.map(|(x, p)| (vec![Block::Surface(x)], p)))
