@@ -39,17 +39,34 @@ pub fn alphas(g: [[f64; 3]; 3]) -> [f64; 6] {
     ]
 }
 
-/// One row of the (negated) operator in the slot order of [`OFFSETS`]: the centre
-/// 2(α¹¹ + α²² + α³³), the face neighbours −(α^tt ± ½ s_t) along axis t, and the edge
-/// neighbours ∓½ α^pr of the 4-corner mixed derivatives (sign −o_p o_r), with s the
-/// first-derivative coefficients Σ_ij α^ij P^k_ij.
+/// One row of the (negated) operator in the slot order of [`OFFSETS`], divided by its
+/// diagonal 2(α¹¹ + α²² + α³³) (the row is left as it is if that is zero): the centre 1, the
+/// face neighbours −(α^tt ± ½ s_t) along axis t, and the edge neighbours ∓½ α^pr of the
+/// 4-corner mixed derivatives (sign −o_p o_r), with s the first-derivative coefficients
+/// Σ_ij α^ij P^k_ij.
+///
+/// Why the rows are scaled: α^ij scales with the fourth power of the local spacing, so at a
+/// clustered wall the rows are 1e-6 of the far field's (ONERA M6: diagonal 4e-11 next to the
+/// tip's trailing edge against 1e-5 in the far field). A Bi-CGSTAB solve of an inexact Picard
+/// step stops at a relative 2-norm of the residual, which then ignores the near-wall rows: the
+/// corrections there were left wrong by many local cell heights, the next iterate degenerate
+/// and its correction up to 5 block diameters (the M6 wing volumes' spikes after every wall
+/// pass, 314 Picard steps). Scaled rows weigh every node's equation alike, as the Picard
+/// residual [24] does (each row divided by its diagonal); the fixed point is the same.
 #[inline]
 fn row_coefficients(row: &mut [f64; 19], al: [f64; 6], sk: [f64; 3]) {
     let [d0, d1, d2] = [al[0], al[3], al[5]];
-    let (h01, h02, h12) = (0.5 * al[1], 0.5 * al[2], 0.5 * al[4]);
-    let [s0, s1, s2] = sk.map(|v| 0.5 * v);
+    let diag = 2.0 * (d0 + d1 + d2);
+    let scale = if diag > 0.0 { 1.0 / diag } else { 1.0 };
+    let [d0, d1, d2] = [d0, d1, d2].map(|v| v * scale);
+    let (h01, h02, h12) = (
+        0.5 * scale * al[1],
+        0.5 * scale * al[2],
+        0.5 * scale * al[4],
+    );
+    let [s0, s1, s2] = sk.map(|v| 0.5 * scale * v);
     *row = [
-        2.0 * (d0 + d1 + d2),
+        if diag > 0.0 { 1.0 } else { diag },
         -(d0 - s0),
         -(d0 + s0),
         -(d1 - s1),
@@ -73,7 +90,7 @@ fn row_coefficients(row: &mut [f64; 19], al: [f64; 6], sk: [f64; 3]) {
 
 /// Assembles the frozen 19-point operator of [86] at iterate `x` and the right-hand sides
 /// (one per coordinate) that carry the Dirichlet boundary values. Rows are multiplied by −1 so
-/// that the diagonal 2(α11 + α22 + α33) is positive.
+/// that the diagonal 2(α11 + α22 + α33) is positive, and divided by it ([`row_coefficients`]).
 pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f64>; 3]) {
     let [ni, nj, nk] = x.dims();
     let [nx, ny, nz] = [ni - 2, nj - 2, nk - 2];
