@@ -90,7 +90,7 @@ fn row_coefficients(row: &mut [f64; 19], al: [f64; 6], sk: [f64; 3]) {
 
 /// Assembles the frozen 19-point operator of [86] at iterate `x` and the right-hand sides
 /// (one per coordinate) that carry the Dirichlet boundary values. Rows are multiplied by −1 so
-/// that the diagonal 2(α11 + α22 + α33) is positive, and divided by it ([`row_coefficients`]).
+/// that the diagonal 2(α11 + α22 + α33) is positive, and divided by it (`row_coefficients`: why).
 pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f64>; 3]) {
     let [ni, nj, nk] = x.dims();
     let [nx, ny, nz] = [ni - 2, nj - 2, nk - 2];
