@@ -123,8 +123,9 @@ fn co_block_is_fold_free_and_holds_the_wall_spacing() {
 }
 
 /// Near-wall orthogonality (`wall_orthogonal`, on by default): at every wall node off the
-/// 0.058°, mean 0.010°, with the passes' intermediate solves to 1e-6 and the scaled Picard rows) and the wall-normal
-/// 0.125°, mean 0.013°, with the passes' intermediate solves to 1e-6) and the wall-normal
+/// wall face's rim the first off-wall grid line leaves within 2° of the wall normal (measured
+/// 0.058°, mean 0.010°, with the passes' intermediate solves to 1e-6 and the volume Picard
+/// rows scaled) and the wall-normal
 /// distance of the first off-wall node is within 20 % of the prescribed height (measured
 /// 1.000 … 1.009); without it up to 78°, mean 38°, and distances
 /// down to 0.20 of the target. `WING_CO_EXTRA` adds keys to the case (`wall_orthogonal = false`
