@@ -24,7 +24,7 @@ use crate::elliptic::nested;
 use crate::elliptic::picard::BlockResult;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::poisson2d;
-use crate::elliptic::wall2d::hold_wall_spacing;
+use crate::elliptic::wall2d::{hold_wall_spacing_on, WallSide};
 use crate::grid::arclength::EdgeFunctions;
 use crate::grid::boundary::Boundary2;
 use crate::grid::{Edge, Grid2};
@@ -311,6 +311,31 @@ pub fn grid_block_sides<const D: usize>(
     if !orthogonal.contains(&true) && !walls.contains(&true) {
         return grid_block(b, start, kind, solver, params, place);
     }
+    let walls: Vec<WallSide> = Edge::ALL
+        .into_iter()
+        .filter(|e| walls[e.index()])
+        .map(WallSide::whole)
+        .collect();
+    grid_block_walls(b, start, orthogonal, &walls, kind, solver, params, place)
+}
+
+/// [`grid_block_sides`] with wall sides that may be chains of wall and non-wall edges
+/// ([`WallSide`]): the three steps of Section 2.4 (from `start`, transfinite if None), then
+/// the wall passes ([`crate::elliptic::wall2d`]).
+///
+/// # Errors
+/// A wall spacing with Laplace control functions, and the errors of the solves.
+#[allow(clippy::too_many_arguments)]
+pub fn grid_block_walls<const D: usize>(
+    b: &Boundary2<D>,
+    start: Option<Grid2<D>>,
+    orthogonal: [bool; 4],
+    walls: &[WallSide],
+    kind: ControlKind,
+    solver: &mut dyn LinearSolver,
+    params: &PicardParams,
+    place: &str,
+) -> Result<BlockResult<D>> {
     if kind != ControlKind::Algebraic {
         return Err(Error::input(
             place,
@@ -319,7 +344,7 @@ pub fn grid_block_sides<const D: usize>(
         ));
     }
     let r = steps(b, start, orthogonal, solver, params, place)?;
-    let (grid, held) = hold_wall_spacing(r.grid, r.params, walls, solver, params, place)?;
+    let (grid, held) = hold_wall_spacing_on(r.grid, r.params, walls, solver, params, place)?;
     let mut picard = r.picard;
     if let Some(h) = held {
         picard.append(h);

@@ -3,9 +3,10 @@
 //! floats, as one block periodic in i) is gridded as one block, the groups in parallel;
 //! shared edges give bit-identical nodes; the report gives the smoothness of every interface.
 
-use super::multiblock_wall::{grid_block_walls, partial_walls};
+use super::multiblock_wall::partial_walls;
 use super::{surface_distance, BlockReport};
 use crate::case::{BlockKind, LoadedCase};
+use crate::elliptic::orthogonal::grid_block_walls;
 use crate::elliptic::orthogonal::{grid_block_sides, Sides};
 use crate::elliptic::periodic;
 use crate::elliptic::picard::PicardInfo;
@@ -182,10 +183,7 @@ fn grid_group(
                 &place,
             )?;
             // The wall spacing along the group's sides (a row's pieces share its report).
-            let walls: Vec<WallSpacing2> = match &partial {
-                Some(w) => w.iter().map(|s| wall_spacing_on(&r.grid, s)).collect(),
-                None => wall_spacings(&r.grid, g.wall),
-            };
+            let walls = group_walls(&r.grid, partial.as_deref(), g.wall);
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality2d(&grid);
@@ -214,10 +212,7 @@ fn grid_group(
                 &place,
             )?;
             // The wall spacing along the group's sides (a row's pieces share its report).
-            let walls: Vec<WallSpacing2> = match &partial {
-                Some(w) => w.iter().map(|s| wall_spacing_on(&r.grid, s)).collect(),
-                None => wall_spacings(&r.grid, g.wall),
-            };
+            let walls = group_walls(&r.grid, partial.as_deref(), g.wall);
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality_surface(&grid);
@@ -334,4 +329,17 @@ fn solve_group<const D: usize>(
         wall: g.wall,
     };
     grid_block_sides(bnd, None, sides, ctrl, solver, params, place)
+}
+
+/// The wall spacing along a group's wall sides: the partial walls' if any, else the whole
+/// flagged sides'.
+fn group_walls<const D: usize>(
+    grid: &Grid2<D>,
+    partial: Option<&[WallSide]>,
+    walls: [bool; 4],
+) -> Vec<WallSpacing2> {
+    match partial {
+        Some(w) => w.iter().map(|s| wall_spacing_on(grid, s)).collect(),
+        None => wall_spacings(grid, walls),
+    }
 }

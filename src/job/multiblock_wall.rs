@@ -9,15 +9,10 @@
 //! edge, the base's first spacing at that corner. A vertex with no such edge, or with several,
 //! is an input error naming the block, side, edge and vertex.
 
-use crate::algebraic::ControlKind;
 use crate::case::LoadedCase;
-use crate::elliptic::orthogonal::steps;
-use crate::elliptic::picard::{BlockResult, PicardParams};
-use crate::elliptic::wall2d::{hold_wall_spacing_on, WallPart, WallSide};
-use crate::grid::boundary::Boundary2;
+use crate::elliptic::wall2d::{WallPart, WallSide};
 use crate::grid::topology::{Group, Topology};
 use crate::grid::Edge;
-use crate::solve::LinearSolver;
 use crate::{Error, Result};
 
 /// The wall sides of group `g` if one of its flagged sides is a chain of wall and non-wall
@@ -177,37 +172,4 @@ fn wall_end_error(
             topo.vertices[v]
         ),
     )
-}
-
-/// [`crate::elliptic::orthogonal::grid_block_sides`] with wall sides that may be chains of wall
-/// and non-wall edges: the three steps of Section 2.4 (from `start`, transfinite if None),
-/// then the wall passes.
-///
-/// # Errors
-/// A wall spacing with Laplace control functions, and the errors of the solves.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn grid_block_walls<const D: usize>(
-    b: &Boundary2<D>,
-    start: Option<crate::grid::Grid2<D>>,
-    orthogonal: [bool; 4],
-    walls: &[WallSide],
-    kind: ControlKind,
-    solver: &mut dyn LinearSolver,
-    params: &PicardParams,
-    place: &str,
-) -> Result<BlockResult<D>> {
-    if kind != ControlKind::Algebraic {
-        return Err(Error::input(
-            place,
-            "orthogonal edges and wall spacings need the algebraic control functions \
-             (control = \"algebraic\")",
-        ));
-    }
-    let r = steps(b, start, orthogonal, solver, params, place)?;
-    let (grid, held) = hold_wall_spacing_on(r.grid, r.params, walls, solver, params, place)?;
-    let mut picard = r.picard;
-    if let Some(h) = held {
-        picard.append(h);
-    }
-    Ok(BlockResult { grid, picard })
 }
