@@ -38,6 +38,20 @@ fn block(
     Boundary2::new([e1, e2, e3, e4], "test").unwrap()
 }
 
+/// The unit square of `n` × `n` nodes whose sides E1 (x = 0) and E2 (x = 1) start with
+/// geometric spacings 1e-4 and 1e-3; uniform along x.
+fn square_1e4_1e3(n: usize) -> Boundary2<2> {
+    let ya = geometric(n, 1.0, 1e-4);
+    let yb = geometric(n, 1.0, 1e-3);
+    let xs: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
+    block(
+        ya.iter().map(|&y| [0.0, y]).collect(),
+        yb.iter().map(|&y| [1.0, y]).collect(),
+        xs.iter().map(|&x| [x, 0.0]).collect(),
+        xs.iter().map(|&x| [x, 1.0]).collect(),
+    )
+}
+
 fn solve(b: &Boundary2<2>, orthogonal: [bool; 4], wall: [bool; 4]) -> Grid2<2> {
     let sides = Sides { orthogonal, wall };
     let r = grid_block_sides(
@@ -98,19 +112,11 @@ fn first_spacings_follow_the_geometric_interpolation_of_the_side_edges() {
     // grid interpolates the side distributions linearly (5.5e-4 at x = 1/2); the wall asks for
     // h(x) = 1e-4^(1-x) 1e-3^x (3.2e-4 there).
     let n = 33;
-    let ya = geometric(n, 1.0, 1e-4);
-    let yb = geometric(n, 1.0, 1e-3);
-    let xs: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
-    let b = block(
-        ya.iter().map(|&y| [0.0, y]).collect(),
-        yb.iter().map(|&y| [1.0, y]).collect(),
-        xs.iter().map(|&x| [x, 0.0]).collect(),
-        xs.iter().map(|&x| [x, 1.0]).collect(),
-    );
+    let b = square_1e4_1e3(n);
     let target = |x: f64| 1e-4f64.powf(1.0 - x) * 1e-3f64.powf(x);
     let err = |g: &Grid2<2>| {
         (1..n - 1)
-            .map(|i| ((g.point(i, 1)[1] - g.point(i, 0)[1]) / target(xs[i]) - 1.0).abs())
+            .map(|i| ((g.point(i, 1)[1] - g.point(i, 0)[1]) / target(g.point(i, 0)[0]) - 1.0).abs())
             .fold(0.0, f64::max)
     };
     let plain = solve(&b, [false; 4], [false; 4]);
@@ -231,15 +237,7 @@ fn a_wall_on_part_of_a_side_holds_its_spacing_and_joins_the_rest_smoothly() {
     // (the plain grid interpolates linearly: 5.5e-4 at x = 1/2). Past the wall's end the
     // first spacing grows back into the plain grid's without a jump.
     let n = 33;
-    let ya = geometric(n, 1.0, 1e-4);
-    let yb = geometric(n, 1.0, 1e-3);
-    let xs: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
-    let b = block(
-        ya.iter().map(|&y| [0.0, y]).collect(),
-        yb.iter().map(|&y| [1.0, y]).collect(),
-        xs.iter().map(|&x| [x, 0.0]).collect(),
-        xs.iter().map(|&x| [x, 1.0]).collect(),
-    );
+    let b = square_1e4_1e3(n);
     let first = |g: &Grid2<2>| -> Vec<f64> {
         (0..n)
             .map(|i| g.point(i, 1)[1] - g.point(i, 0)[1])
