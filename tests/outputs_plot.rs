@@ -308,3 +308,42 @@ fn blocks_in_colours_and_the_topology_of_a_multi_block_case() {
     let o = ellipgrid(d.path(), &["plot", "g.x", "-o", "b.png", "--blocks", "-q"]);
     assert!(o.status.success(), "{}", text(&o));
 }
+
+#[test]
+fn selected_blocks_only_are_drawn() {
+    let d = tmp();
+    let case = root().join("examples/naca0012_ogrid.toml");
+    let o = ellipgrid(
+        d.path(),
+        &["run", "-q", case.to_str().unwrap(), "-o", "g.x"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let polygons = |args: &[&str]| {
+        let mut a = vec!["plot", "g.x", "-o", "s.svg", "-q", "--blocks"];
+        a.extend(args);
+        let o = ellipgrid(d.path(), &a);
+        assert!(o.status.success(), "{args:?}: {}", text(&o));
+        let t = std::fs::read_to_string(d.path().join("s.svg")).unwrap();
+        let fills: std::collections::BTreeSet<String> = t
+            .lines()
+            .filter(|l| l.starts_with("<polygon"))
+            .filter_map(|l| Some(l.split("fill=\"").nth(1)?.get(..7)?.to_string()))
+            .collect();
+        (t.matches("<polygon").count(), fills.len(), t)
+    };
+    let (all, colours, _) = polygons(&[]);
+    assert_eq!(colours, 4);
+    // By number and by name: two of the four equal blocks, two colours, two legend entries.
+    let (two, colours, t) = polygons(&["--select", "1, block3"]);
+    assert_eq!((2 * two, colours), (all, 2));
+    assert!(t.contains(">block1</text>") && t.contains(">block3</text>"));
+    assert!(!t.contains(">block2</text>") && !t.contains(">block4</text>"));
+    // An unknown block: exit 2 naming it and the blocks there are, no picture.
+    let _ = std::fs::remove_file(d.path().join("s.svg"));
+    for bad in ["5", "0", "wing"] {
+        let o = ellipgrid(d.path(), &["plot", "g.x", "-o", "s.svg", "--select", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {}", text(&o));
+        assert!(text(&o).contains(&format!("'{bad}'")) && text(&o).contains("block4"));
+        assert!(!d.path().join("s.svg").exists());
+    }
+}

@@ -1,6 +1,7 @@
 //! `ellipgrid plot GRID -o fig.png|fig.svg`: a picture of a grid (see `ellipgrid::plot`).
 
 use clap::Args;
+use ellipgrid::io::Block;
 use ellipgrid::plot::{self, Marks, Plane, PlotOptions, View};
 use ellipgrid::{Error, Result};
 use std::path::PathBuf;
@@ -35,6 +36,10 @@ pub struct PlotArgs {
     /// Fill every block with its own colour, with a legend of block names.
     #[arg(long)]
     blocks: bool,
+    /// Draw only these blocks: names or 1-based numbers, comma-separated (e.g. the volumes
+    /// around a wing, without the wake volumes in front of them).
+    #[arg(long, value_name = "B1,B2,...")]
+    select: Option<String>,
     /// Draw the topology of a multi-block case (a .toml with [[vertex]] and [[edge]] tables):
     /// every edge with its name, every vertex with its name.
     #[arg(long)]
@@ -116,7 +121,7 @@ pub fn plot(a: &PlotArgs) -> Result<()> {
             "fills the blocks with colours: use it or --color, not both".into(),
         ));
     }
-    let input = load(&a.grid, true, a.quiet)?;
+    let mut input = load(&a.grid, true, a.quiet)?;
     let marks = match (a.topology, &input.topology) {
         (false, _) => Marks::default(),
         (true, Some(t)) => Marks::topology(t, &input.blocks),
@@ -128,9 +133,42 @@ pub fn plot(a: &PlotArgs) -> Result<()> {
             ))
         }
     };
+    if let Some(list) = &a.select {
+        input.blocks = select(std::mem::take(&mut input.blocks), list)?;
+    }
     plot::write_picture_marked(&a.output, &input.blocks, &opts, &marks)?;
     if !a.quiet {
         println!("wrote {}", a.output.display());
     }
     Ok(())
+}
+
+/// The blocks `list` names (names or 1-based numbers, comma-separated), in the file's order.
+fn select(blocks: Vec<(String, Block)>, list: &str) -> Result<Vec<(String, Block)>> {
+    let n = blocks.len();
+    let mut keep = vec![false; n];
+    for t in list.split(',').map(str::trim) {
+        let at = blocks
+            .iter()
+            .position(|(name, _)| name == t)
+            .or_else(|| {
+                t.parse::<usize>()
+                    .ok()
+                    .filter(|&k| (1..=n).contains(&k))
+                    .map(|k| k - 1)
+            })
+            .ok_or_else(|| {
+                let names: Vec<&str> = blocks.iter().map(|(b, _)| b.as_str()).collect();
+                Error::input(
+                    "--select",
+                    format!("'{t}': no such block (blocks 1..{n}: {})", names.join(", ")),
+                )
+            })?;
+        keep[at] = true;
+    }
+    Ok(blocks
+        .into_iter()
+        .zip(keep)
+        .filter_map(|(b, k)| k.then_some(b))
+        .collect())
 }
