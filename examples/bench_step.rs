@@ -8,11 +8,13 @@
 //!
 //! ```text
 //! cargo run --release --example bench_step -- /work/corpus/step [--n 33] [--timeout 60] \
-//!     [--only NAME] [--show REASON]
+//!     [--only NAME] [--show REASON] [--linear direct|multigrid]
 //! ```
 //!
 //! `--only NAME` runs the files whose name contains NAME; `--show REASON` prints the file and
-//! face number of every face whose outcome contains REASON (e.g. `--show "(u, v)"`).
+//! face number of every face whose outcome contains REASON (e.g. `--show "(u, v)"`);
+//! `--linear` the linear solver of the faces' elliptic steps (`step grid --linear`; default
+//! direct).
 
 use ellipgrid::cad::{grid_face_blocks, read_step_faces, Route};
 use ellipgrid::case::DistributionSpec;
@@ -55,7 +57,7 @@ fn class(m: &str) -> String {
 /// (face number, surface type, outcome, whether the face has holes).
 type Faces = Vec<(usize, &'static str, Outcome, bool)>;
 
-fn grid_file(path: PathBuf, n: usize) -> Result<Faces, String> {
+fn grid_file(path: PathBuf, n: usize, linear: &str) -> Result<Faces, String> {
     let faces = read_step_faces(&path).map_err(|e| e.to_string())?;
     let d = DistributionSpec::Uniform {};
     Ok(faces
@@ -64,7 +66,7 @@ fn grid_file(path: PathBuf, n: usize) -> Result<Faces, String> {
             let o = match f.route() {
                 Route::Refused(why) => Outcome::Refused(why),
                 _ => {
-                    let mut solver = ellipgrid::solve::select::by_name("direct").unwrap();
+                    let mut solver = ellipgrid::solve::select::by_name(linear).unwrap();
                     match grid_face_blocks(f, (n, n), &d, &d, solver.as_mut(), "") {
                         Ok(gs) => {
                             let folded = gs.iter().any(|g| {
@@ -109,6 +111,7 @@ fn main() {
             .cloned()
     };
     let (only, show) = (text("--only"), text("--show"));
+    let linear = text("--linear").unwrap_or_else(|| "direct".into());
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("corpus directory")
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -138,9 +141,9 @@ fn main() {
         let system = name.split('_').nth(1).unwrap_or("?").to_string();
         let (tx, rx) = mpsc::channel();
         let t0 = Instant::now();
-        let p = path.clone();
+        let (p, l) = (path.clone(), linear.clone());
         std::thread::spawn(move || {
-            let _ = tx.send(grid_file(p, n));
+            let _ = tx.send(grid_file(p, n, &l));
         });
         let r = rx.recv_timeout(Duration::from_secs(timeout));
         let secs = t0.elapsed().as_secs_f64();

@@ -94,16 +94,19 @@ fn best_position(c: &[([f64; 2], f64); 12], now: [f64; 2], reach: f64) -> [f64; 
                 let a = [gk[0] - gl[0], gk[1] - gl[1], hl - hk];
                 let b = [gk[0] - gm[0], gk[1] - gm[1], hm - hk];
                 let det = a[0] * b[1] - a[1] * b[0];
-                let size = a[0].hypot(a[1]) * b[0].hypot(b[1]);
-                if det.abs() <= 1e-12 * size || size == 0.0 {
+                // |det| ≤ 1e-12 |a| |b| (nearly parallel lines), squared: no square roots in
+                // this loop of 220 candidates per node (they were most of the time).
+                let size2 = (a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1]);
+                if det * det <= 1e-24 * size2 || size2 == 0.0 {
                     continue;
                 }
                 let p = [
                     (a[2] * b[1] - a[1] * b[2]) / det,
                     (a[0] * b[2] - a[2] * b[0]) / det,
                 ];
-                let d = (p[0] - now[0]).hypot(p[1] - now[1]);
-                if d.is_nan() || d > reach {
+                let (dx, dy) = (p[0] - now[0], p[1] - now[1]);
+                let d2 = dx * dx + dy * dy;
+                if d2.is_nan() || d2 > reach * reach {
                     continue;
                 }
                 let v = worst(c, p);
