@@ -14,7 +14,7 @@
 //! `--only NAME` runs the files whose name contains NAME; `--show REASON` prints the file and
 //! face number of every face whose outcome contains REASON (e.g. `--show "(u, v)"`);
 //! `--linear` the linear solver of the faces' elliptic steps (`step grid --linear`; default
-//! direct).
+//! multigrid, as there).
 
 use ellipgrid::cad::{grid_face_blocks, read_step_faces, Route};
 use ellipgrid::case::DistributionSpec;
@@ -111,7 +111,7 @@ fn main() {
             .cloned()
     };
     let (only, show) = (text("--only"), text("--show"));
-    let linear = text("--linear").unwrap_or_else(|| "direct".into());
+    let linear = text("--linear").unwrap_or_else(|| "multigrid".into());
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("corpus directory")
         .filter_map(|e| e.ok().map(|e| e.path()))

@@ -82,8 +82,9 @@ struct GridArgs {
     /// Last spacing along the v sides (a length).
     #[arg(long, value_name = "DS")]
     last_j: Option<f64>,
-    /// Linear solver of the Laplace–Beltrami step.
-    #[arg(long, default_value = "direct")]
+    /// Linear solver of each face's elliptic steps (its (u, v) parametrization and the
+    /// Laplace–Beltrami step): "multigrid" (default) or "direct" (faer's sparse LU).
+    #[arg(long, default_value = "multigrid")]
     linear: String,
     /// Output file(s): .x/.xyz/.p3d/.g (Plot3D), .vts, .vtm, .glb, .gltf, .obj; one block
     /// per face, named `faceN` (`faceN.b0`, `faceN.b1`, … for a face of several blocks).
