@@ -8,7 +8,7 @@ use crate::grid::boundary::POLE_TOLERANCE;
 use crate::grid::Edge;
 use crate::solve::LinearSolver;
 use crate::surface::pipeline::{
-    edge_length, edge_params, grid_surface, surface_edge, SurfaceResult,
+    edge_map, edge_params_on, grid_surface, surface_edge, SurfaceResult,
 };
 use crate::{Error, Result};
 use ellipgrid_geometry::{project_to_edge, BSplineSurf, Surface, SurfaceEdge, Vec3};
@@ -174,7 +174,8 @@ pub fn grid_patch(
             format!("a surface grid needs at least 3 × 3 nodes, got {ni} × {nj}"),
         ));
     }
-    let length = Edge::ALL.map(|e| edge_length(surface, e));
+    let maps = Edge::ALL.map(|e| edge_map(surface, e));
+    let length = maps.each_ref().map(|m| m.length());
     let longest = length.iter().copied().fold(0.0, f64::max);
     // A side collapsed to a point (a pole: the nose of an OpenVSP fuselage, the tip of a
     // wing cap) gets the nodes of the opposite side's parameters, so that the grid lines
@@ -188,7 +189,7 @@ pub fn grid_patch(
         };
         let at = format!("{place}, edge {e}");
         let sigma = d.sample(n, length[e.index()], &at)?;
-        uv[e.index()] = edge_params(surface, e, &sigma);
+        uv[e.index()] = edge_params_on(&maps[e.index()], e, &sigma);
     }
     for e in Edge::ALL.into_iter().filter(|e| pole[e.index()]) {
         let (k, n, run) = (

@@ -5,7 +5,7 @@ use crate::case::spec::{SurfaceRef, SurfaceSpec};
 use crate::case::{point, LoadedCase};
 use crate::grid::Edge;
 use crate::io::{plot3d, Block};
-use crate::surface::pipeline::{edge_length, edge_params};
+use crate::surface::pipeline::{edge_length, edge_map, edge_params_on};
 use crate::{Error, Result};
 use ellipgrid_geometry::{self as geo, Surface, Vec3};
 use std::path::Path;
@@ -124,9 +124,9 @@ impl LoadedCase {
             let n = if e.runs_along_i() { ni } else { nj };
             uv[e.index()] = match (&spec.curve, spec.reverse) {
                 (None, false) => {
-                    let len = edge_length(surface, e);
-                    let sigma = spec.distribution.sample(n, len, &at)?;
-                    edge_params(surface, e, &sigma)
+                    let map = edge_map(surface, e);
+                    let sigma = spec.distribution.sample(n, map.length(), &at)?;
+                    edge_params_on(&map, e, &sigma)
                 }
                 (Some(crate::case::CurveSpec::Nodes { points }), false)
                     if matches!(spec.distribution, crate::case::DistributionSpec::Uniform {}) =>

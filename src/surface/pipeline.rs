@@ -80,8 +80,22 @@ impl Curve for EdgeCurve<'_> {
 /// Step 1: the (u, v) of nodes along the side of the parameter square under edge `e`, placed
 /// at the normalized 3D arclengths `sigma` of the surface's edge curve.
 pub fn edge_params(surface: &dyn Surface, e: Edge, sigma: &[f64]) -> Vec<[f64; 2]> {
+    edge_params_on(&edge_map(surface, e), e, sigma)
+}
+
+/// The arclength table of the surface's edge curve under block edge `e`: build it once where
+/// both the length and the parameters are needed (on a B-spline surface of many knot spans
+/// it is most of a patch's gridding time).
+pub fn edge_map(surface: &dyn Surface, e: Edge) -> ArclengthMap {
+    ArclengthMap::new(&EdgeCurve {
+        surface,
+        edge: surface_edge(e),
+    })
+}
+
+/// [`edge_params`] from the edge's arclength table `map` ([`edge_map`]).
+pub fn edge_params_on(map: &ArclengthMap, e: Edge, sigma: &[f64]) -> Vec<[f64; 2]> {
     let edge = surface_edge(e);
-    let map = ArclengthMap::new(&EdgeCurve { surface, edge });
     map.params(sigma)
         .into_iter()
         .map(|t| {
@@ -93,8 +107,7 @@ pub fn edge_params(surface: &dyn Surface, e: Edge, sigma: &[f64]) -> Vec<[f64; 2
 
 /// Length of the surface's edge curve under block edge `e`.
 pub fn edge_length(surface: &dyn Surface, e: Edge) -> f64 {
-    let edge = surface_edge(e);
-    ArclengthMap::new(&EdgeCurve { surface, edge }).length()
+    edge_map(surface, e).length()
 }
 
 /// Edge functions of the straight-line grid in P_uv from the boundary (u, v) values:

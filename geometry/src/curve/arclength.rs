@@ -23,6 +23,8 @@ const REL_TOL: f64 = 1e-13;
 /// At most this many panels per curve (bounded work whatever the curve); beyond it the
 /// remaining panels are accepted as they are.
 pub const MAX_PANELS: usize = 1 << 14;
+/// A curve whose largest speed is below this times its largest |x| is a point to round-off.
+const POINT_LIKE: f64 = 1e-12;
 /// Stop bisecting below this panel width (non-smooth points that were not declared).
 const MIN_WIDTH: f64 = 1.0 / (1u64 << 40) as f64;
 
@@ -149,6 +151,14 @@ impl ArclengthMap {
             .map(|k| curve.derivative(k as f64 / 64.0).norm())
             .filter(|v| v.is_finite())
             .fold(0.0f64, f64::max);
+        // A curve that is a point to round-off (a collapsed side of a patch: a pole) has a
+        // speed that is all round-off, which no panel resolves: its starting panels are taken
+        // as they are (they were bisected to MAX_PANELS, most of an OpenVSP model's time).
+        let xscale = (0..=4)
+            .map(|k| curve.point(k as f64 / 4.0).norm())
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, f64::max);
+        let point_like = fscale <= POINT_LIKE * xscale;
         let mut panels = Vec::new();
         let mut s = 0.0;
         // Depth-first from the left, so panels come out ordered.
@@ -169,8 +179,10 @@ impl ArclengthMap {
             // Converged, or down at the round-off floor of the speed samples (without this
             // guard a noisy speed would be bisected to MIN_WIDTH everywhere).
             let floor = 16.0 * f64::EPSILON * f.iter().map(|v| v.abs()).sum::<f64>();
-            let resolved =
-                tail * (b - a) <= REL_TOL * fmax.max(fscale) || tail <= floor || !tail.is_finite();
+            let resolved = point_like
+                || tail * (b - a) <= REL_TOL * fmax.max(fscale)
+                || tail <= floor
+                || !tail.is_finite();
             if resolved || b - a <= MIN_WIDTH || panels.len() + todo.len() >= MAX_PANELS {
                 let len: f64 = half * rule.weights.iter().zip(&f).map(|(w, v)| w * v).sum::<f64>();
                 panels.push(Panel { a, b, s_a: s, coef });
@@ -424,6 +436,34 @@ mod tests {
         assert!(map.panel_count() <= 256, "{} panels", map.panel_count());
         assert!((map.length() - 1.0).abs() < 1e-11, "{}", map.length());
         assert!((map.param_at(0.3) - 0.3).abs() < 1e-11);
+    }
+
+    #[test]
+    fn a_point_to_round_off_is_not_bisected_and_a_short_curve_still_is_resolved() {
+        // A collapsed patch side (OpenVSP's wing-cap poles): the point (5, −3, 2) whose
+        // derivative is round-off noise of 1e-16. It took MAX_PANELS panels before.
+        let noise = |u: f64| {
+            let h = u.to_bits().wrapping_mul(0x9E37_79B9_7F4A_7C15);
+            ((h >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 4e-16
+        };
+        let pole = Fn3 {
+            p: |_| Vec3::new(5.0, -3.0, 2.0),
+            d: move |u: f64| Vec3::new(noise(u), noise(1.0 - u), 0.0),
+            breaks: vec![],
+        };
+        let map = ArclengthMap::new(&pole);
+        assert!(map.panel_count() <= 16, "{} panels", map.panel_count());
+        assert!(map.length() < 1e-15, "{}", map.length());
+        // A quarter circle of radius 1e-9 at the same place is a curve (speed 1.6e-9, 2.5e-10
+        // of |x|): resolved to the relative accuracy of the table.
+        let r = 1e-9;
+        let arc = Arc::new(Vec3::new(5.0, -3.0, 2.0), r, 0.0, 90.0).unwrap();
+        let map = ArclengthMap::new(&arc);
+        assert!(
+            (map.length() / (0.5 * PI * r) - 1.0).abs() < 1e-12,
+            "{}",
+            map.length()
+        );
     }
 
     #[test]

@@ -20,8 +20,10 @@ use truck_geometry::prelude::{BSplineSurface, NurbsSurface, Point3, Vector4};
 /// Highest supported degree (fixed-size scratch arrays keep evaluation allocation-free).
 /// OpenVSP writes piecewise Bézier fuselage surfaces of degree 22.
 const MAX_DEGREE: usize = 31;
-/// Scratch size for degrees up to 11 (every common CAD surface; the small arrays keep the
-/// usual evaluation fast) and for the rest.
+/// Scratch sizes for degrees up to 3 (bicubic and lower: most CAD surfaces; zeroing the
+/// scratch of size 12 was a tenth of an OpenVSP model's gridding), up to 11 (every common CAD
+/// surface) and for the rest. The arithmetic is the same in each.
+const CUBIC: usize = 4;
 const SMALL: usize = 12;
 const LARGE: usize = MAX_DEGREE + 1;
 
@@ -278,7 +280,10 @@ impl Surface for BSplineSurf {
     }
 
     fn eval(&self, u: f64, v: f64) -> SurfacePoint {
-        let s = if self.deg[0].max(self.deg[1]) < SMALL {
+        let top = self.deg[0].max(self.deg[1]);
+        let s = if top < CUBIC {
+            self.homogeneous::<CUBIC>(u, v)
+        } else if top < SMALL {
             self.homogeneous::<SMALL>(u, v)
         } else {
             self.homogeneous::<LARGE>(u, v)
@@ -311,7 +316,10 @@ impl Surface for BSplineSurf {
     }
 
     fn point(&self, u: f64, v: f64) -> Vec3 {
-        if self.deg[0].max(self.deg[1]) < SMALL {
+        let top = self.deg[0].max(self.deg[1]);
+        if top < CUBIC {
+            self.point_with::<CUBIC>(u, v)
+        } else if top < SMALL {
             self.point_with::<SMALL>(u, v)
         } else {
             self.point_with::<LARGE>(u, v)
