@@ -443,7 +443,7 @@ fn the_artificial_boundary_example_runs_fold_free_from_a_folded_start() {
     // The wall spacing is held along the whole body, valley bottoms included (5.2e-3 there
     // without `wall`), and fades out over 35 % of the lines (`wall_fade`): no cell sheared
     // halfway up the valleys (with the default fade 0.75: skewness 0.96, scaled Jacobian
-    // 0.06; here 0.65, 0.53) and a bounded growth off the wall (1.31).
+    // 0.06; here 0.65, 0.52) and a bounded growth off the wall (1.32).
     for b in r["blocks"].as_array().unwrap() {
         let w = &b["wall"][0];
         assert_eq!(w["edge"], "E3", "{b}");
