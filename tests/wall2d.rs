@@ -317,6 +317,11 @@ fn wall_input_errors_exit_2_naming_the_block_and_the_side() {
         &square_case(9, 9).replace("nj = 9\n", "nj = 9\nwall = \"E5\"\n"),
         &["block 'b'", "wall", "'E5'"],
     );
+    // A wall fade outside (0, 1].
+    rejects(
+        &PART_WALL.replace("name = \"A\"\n", "name = \"A\"\nwall_fade = 1.5\n"),
+        &["block 'A'", "wall_fade = 1.5", "(0, 1]"],
+    );
     // A wall on a surface block.
     let surface = fs::read_to_string(root().join("examples/wing_pylon.toml"))
         .unwrap()

@@ -133,6 +133,11 @@ pub struct BlockSpec {
     /// distributions ([`crate::elliptic::wall2d`]), e.g. `"E3"` or `["E3", "E1"]`; default none.
     #[serde(default, deserialize_with = "one_or_more")]
     pub wall: Vec<String>,
+    /// Share of each grid line leaving this block's walls over which the held wall spacing
+    /// fades into the elliptic map's (0 < f ≤ 1; default [`crate::elliptic::wall2d::FADE`]).
+    /// Shorter for deep concave valleys, where a long fade shears the cells
+    /// (`examples/artificial_boundary.toml`).
+    pub wall_fade: Option<f64>,
     #[serde(rename = "E1")]
     pub e1: Option<SideSpec>,
     #[serde(rename = "E2")]

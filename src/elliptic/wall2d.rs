@@ -261,12 +261,16 @@ pub fn hold_wall_spacing_on<const D: usize>(
         .iter()
         .map(|s| sides.iter().any(|o| o.edge.index() == s.edge.index() ^ 1))
         .collect();
-    let fade = |o: bool| if o { FADE.min(0.5) } else { FADE };
+    let fades: Vec<f64> = sides
+        .iter()
+        .zip(&opposite)
+        .map(|(s, &o)| if o { s.fade.min(0.5) } else { s.fade })
+        .collect();
     let targets: Vec<Targets> = sides
         .iter()
         .zip(&cols)
-        .zip(&opposite)
-        .map(|((s, c), &o)| Targets::new(&x, c, s.part.as_ref(), fade(o)))
+        .zip(&fades)
+        .map(|((s, c), &f)| Targets::new(&x, c, s.part.as_ref(), f))
         .collect();
     let mut goals: Vec<Vec<Vec<f64>>> = vec![Vec::new(); cols.len()];
     let loose = PicardParams {
@@ -284,8 +288,8 @@ pub fn hold_wall_spacing_on<const D: usize>(
             .iter()
             .zip(&targets)
             .zip(&mut goals)
-            .zip(&opposite)
-            .map(|(((c, t), g), &o)| remap_wall(&mut trial, &x, c, t, g, fade(o), o))
+            .zip(opposite.iter().zip(&fades))
+            .map(|(((c, t), g), (&o, &f))| remap_wall(&mut trial, &x, c, t, g, f, o))
             .fold(0.0, f64::max);
         if err <= TOLERANCE {
             break;
@@ -357,7 +361,7 @@ pub fn wall_spacing_on<const D: usize>(g: &Grid2<D>, side: &WallSide) -> WallSpa
     if cols.depth() < 2 || cols.count() < 2 || check_part(side, cols.count(), "").is_err() {
         return out;
     }
-    let targets = Targets::new(g, &cols, side.part.as_ref(), FADE);
+    let targets = Targets::new(g, &cols, side.part.as_ref(), side.fade);
     for c in (1..cols.count().saturating_sub(1)).filter(|&c| targets.on_wall(c)) {
         let (a, b) = (cols.node(c, 0), cols.node(c, 1));
         let h = dist(g.point(a.0, a.1), g.point(b.0, b.1));

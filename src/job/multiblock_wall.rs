@@ -10,15 +10,17 @@
 //! is an input error naming the block, side, edge and vertex.
 
 use crate::case::LoadedCase;
-use crate::elliptic::wall2d::{WallPart, WallSide};
+use crate::elliptic::wall2d::{WallPart, WallSide, FADE};
 use crate::grid::topology::{Group, Topology};
 use crate::grid::Edge;
 use crate::{Error, Result};
 
 /// The wall sides of group `g` if one of its flagged sides is a chain of wall and non-wall
-/// edges (None: every flagged side is a whole wall, held as before).
+/// edges or its blocks set `wall_fade` (None: every flagged side is a whole wall, held as
+/// before).
 ///
 /// # Errors
+/// [`Error::Input`] for a `wall_fade` outside (0, 1] or different on the blocks of a row;
 /// [`Error::Input`] naming the block, side, wall edge and vertex where a wall run ends at a
 /// vertex inside the side without exactly one other edge there; a partial wall on a row of
 /// blocks joined by floating edges.
@@ -28,8 +30,10 @@ pub(crate) fn partial_walls(
     g: &Group,
     place: &str,
 ) -> Result<Option<Vec<WallSide>>> {
+    let fade = wall_fade(case, g, place)?;
     let mut sides = Vec::new();
-    let mut partial = false;
+    let mut partial = fade.is_some();
+    let fade = fade.unwrap_or(FADE);
     for e in Edge::ALL.into_iter().filter(|e| g.wall[e.index()]) {
         let chain = &g.sides[e.index()];
         let flags: Vec<bool> = chain.iter().map(|u| topo.edges[u.edge].wall).collect();
@@ -38,7 +42,10 @@ pub(crate) fn partial_walls(
             && crate::case::topology::parse_walls(&case.case.blocks[g.pieces[0].block].wall, "")
                 .is_ok_and(|w| w[e.index()]);
         if !mixed || named {
-            sides.push(WallSide::whole(e));
+            sides.push(WallSide {
+                fade,
+                ..WallSide::whole(e)
+            });
             continue;
         }
         if g.pieces.len() > 1 {
@@ -55,9 +62,34 @@ pub(crate) fn partial_walls(
         sides.push(WallSide {
             edge: e,
             part: Some(wall_part(case, topo, g, e, place)?),
+            fade,
         });
     }
     Ok(partial.then_some(sides))
+}
+
+/// The blocks' `wall_fade` (one value for a row of blocks), checked to lie in (0, 1].
+fn wall_fade(case: &LoadedCase, g: &Group, place: &str) -> Result<Option<f64>> {
+    let mut out: Option<f64> = None;
+    for p in &g.pieces {
+        let Some(f) = case.case.blocks[p.block].wall_fade else {
+            continue;
+        };
+        if !(f > 0.0 && f <= 1.0) {
+            return Err(Error::input(
+                place,
+                format!("wall_fade = {f}: the share of a grid line must lie in (0, 1]"),
+            ));
+        }
+        if out.is_some_and(|o| o != f) {
+            return Err(Error::input(
+                place,
+                "the blocks of a row joined by floating edges set different wall_fade values",
+            ));
+        }
+        out = Some(f);
+    }
+    Ok(out)
 }
 
 fn names(topo: &Topology, chain: &[crate::grid::topology::EdgeUse]) -> String {

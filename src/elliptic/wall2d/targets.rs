@@ -30,6 +30,9 @@ pub struct WallSide {
     pub edge: Edge,
     /// None: the whole side is wall.
     pub part: Option<WallPart>,
+    /// Share of each column over which the correction fades out ([`super::FADE`] by default;
+    /// half of it at most with an opposite wall).
+    pub fade: f64,
 }
 
 /// The wall part of a side that is a chain of wall and non-wall edges.
@@ -45,7 +48,11 @@ pub struct WallPart {
 impl WallSide {
     /// The whole side `edge`.
     pub fn whole(edge: Edge) -> Self {
-        WallSide { edge, part: None }
+        WallSide {
+            edge,
+            part: None,
+            fade: super::FADE,
+        }
     }
 }
 

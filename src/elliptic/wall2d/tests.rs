@@ -165,6 +165,7 @@ fn a_curved_orthogonal_wall_keeps_its_spacing_and_its_orthogonality() {
 /// part; the first spacing at the wall's end inside the side is `h`.
 fn half_wall(h: f64) -> WallSide {
     WallSide {
+        fade: super::FADE,
         edge: Edge::E3,
         part: Some(WallPart {
             runs: vec![[0, 16]],
