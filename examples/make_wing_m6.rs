@@ -37,7 +37,7 @@
 //! had wrongly oriented face pyramids). The far wake's streamwise nodes are the wake sheet's,
 //! scaled (each far node above its sheet node): the mean kink across the wake sheet fell from
 //! 77° to 18°, and with the wake sheet floating (its nodes moving with the wake volumes) to
-//! about 2°. Left: the kinks across the other faces between the volumes (means 58–66° at
+//! about 2°. Left: the kinks across the other faces between the volumes (means 54–68° at
 //! full size: those faces are gridded on their own before the volumes), checkMesh's skewed
 //! faces, and the run time (minutes; README, "ONERA M6").
 
@@ -322,12 +322,13 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
          #\n\
          # Faces on the wing and the far field are gridded on their surfaces (Section 4), the\n\
          # planes and the surfaces rising from the trailing edge as minimal surfaces of their\n\
-         # edges (Section 3), orthogonal at the wing's edges and in the root plane; the\n\
+         # edges (Section 3), orthogonal at the wing's leading edge and in the root plane; the\n\
          # faces between the volumes (ahead, tipplane, te_up/lo, waketip) have no\n\
          # orthogonality goals: with them the grid lines kinked more across those faces\n\
          # and left the tip's leading edge 7.5° off the wall normal. Then the four volumes\n\
          # (Section 5) with the wall spacing held at the wing (wall = \"F3\"), by Bi-CGSTAB\n\
-         # (the 3D multigrid diverges on these volumes). No orthogonality at the interior\n\
+         # (the 3D multigrid diverges on these volumes), the wall columns following the\n\
+         # side faces' profiles (wall_profiles = \"faces\"). No orthogonality at the interior\n\
          # faces in the volumes: those passes do not converge yet (README, \"ONERA M6\").\n\
          # The wake sheet floats (interface = \"floating\"): its interior nodes move with\n\
          # the wake volumes until the grid crosses it as inside one block (mean kink 18°\n\

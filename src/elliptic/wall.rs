@@ -146,15 +146,15 @@ pub enum WallProfiles {
 /// Target distances from a wall face (module docs).
 #[derive(Clone, Debug)]
 pub struct WallTargets {
-    pub(crate) w: usize,
-    pub(crate) dims: [usize; 3],
+    w: usize,
+    dims: [usize; 3],
     /// Bilinear weights of the four edges at each wall face node (face order).
-    pub(crate) weights: Vec<[f64; 4]>,
+    weights: Vec<[f64; 4]>,
     /// Distance from the wall of node j (counted from the wall) on the four edges leaving it.
-    pub(crate) prof: [Vec<f64>; 4],
+    prof: [Vec<f64>; 4],
     /// With [`WallProfiles::Faces`]: the whole goal column of each wall face node (face
     /// order, `dims[normal]` distances each); empty otherwise.
-    pub(crate) cols: Vec<f64>,
+    cols: Vec<f64>,
 }
 
 impl WallTargets {
@@ -201,7 +201,8 @@ impl WallTargets {
     ) -> Result<Self> {
         let mut t = WallTargets::new(faces, w, place)?;
         if profiles == WallProfiles::Faces {
-            t.cols = super::wall_profile::face_columns(faces, &t);
+            t.cols =
+                super::wall_profile::face_columns(faces, w, &t.weights, &|n, j| t.edges_at(n, j));
         }
         Ok(t)
     }

@@ -18,15 +18,20 @@
 //! A column whose
 //! interpolation is not increasing keeps the edges' profile.
 
-use crate::elliptic::wall::WallTargets;
 use crate::elliptic::wall_normal::fade_weight;
 use crate::grid::faces::{block_node, face_dims, normal, tangents, Faces};
 
-/// The goal columns of every wall face node (face order, `dims[normal]` distances each) from
-/// the side faces of `faces` (module docs); `t` supplies the wall face, the edges' bilinear
-/// weights and their profiles.
-pub(crate) fn face_columns(faces: &Faces, t: &WallTargets) -> Vec<f64> {
-    let (w, dims) = (t.w, t.dims);
+/// The goal columns of every wall face node of wall face `w` (face order, `dims[normal]`
+/// distances each) from the side faces of `faces` (module docs); `weights` are the edges'
+/// bilinear weights at the wall face nodes and `edges_at(n, j)` the edges' interpolated
+/// distance of node j of the column at block node n.
+pub(crate) fn face_columns(
+    faces: &Faces,
+    w: usize,
+    weights: &[[f64; 4]],
+    edges_at: &dyn Fn([usize; 3], usize) -> f64,
+) -> Vec<f64> {
+    let dims = faces.dims();
     let (d, lo) = normal(w);
     let (ta, tb) = tangents(w);
     let [na, nb] = face_dims(w, dims);
@@ -38,7 +43,7 @@ pub(crate) fn face_columns(faces: &Faces, t: &WallTargets) -> Vec<f64> {
     for b in 0..nb {
         for a in 0..na {
             let n = block_node(w, a, b, dims);
-            let wt = t.weights[a + na * b];
+            let wt = weights[a + na * b];
             let (p, q) = (wt[1] + wt[3], wt[2] + wt[3]);
             // Side faces: low and high end of axis ta, then of axis tb.
             for (s, prof) in side.iter_mut().enumerate() {
@@ -61,10 +66,10 @@ pub(crate) fn face_columns(faces: &Faces, t: &WallTargets) -> Vec<f64> {
                     + p * side[1][j]
                     + (1.0 - q) * side[2][j]
                     + q * side[3][j]
-                    - t.edges_at(n, j);
+                    - edges_at(n, j);
             }
             let (first, last) = (col[1], col[m - 1]);
-            let r = t.edges_at(n, 1) / first;
+            let r = edges_at(n, 1) / first;
             let ok = first > 0.0 && last > first && r.is_finite() && {
                 for x in col.iter_mut().skip(1) {
                     *x *= r.powf(fade_weight((*x - first) / (last - first)));
@@ -74,7 +79,7 @@ pub(crate) fn face_columns(faces: &Faces, t: &WallTargets) -> Vec<f64> {
             if ok {
                 out.extend_from_slice(&col);
             } else {
-                out.extend((0..m).map(|j| t.edges_at(n, j)));
+                out.extend((0..m).map(|j| edges_at(n, j)));
             }
         }
     }
