@@ -618,6 +618,10 @@ pub struct VolumeSpec {
     /// With `wall`: also make the grid lines leave the wall along its normal
     /// ([`crate::elliptic::wall_normal`]; default true).
     pub wall_orthogonal: Option<bool>,
+    /// With `wall`: where the interior columns' goal distances from the wall come from:
+    /// "edges" (default; the four edges leaving the wall) or "faces" (the four side faces'
+    /// columns, for side faces gridded before the volume: [`crate::elliptic::wall_profile`]).
+    pub wall_profiles: Option<String>,
     /// Faces ("F1" … "F6") that the grid lines leave along the face's normal
     /// ([`crate::elliptic::orthogonal3d`]): on both sides of an interior face of a volume
     /// topology, the lines cross it without a kink.

@@ -36,3 +36,4 @@ pub mod volume;
 pub mod wall;
 pub mod wall2d;
 pub mod wall_normal;
+pub mod wall_profile;

@@ -23,7 +23,8 @@ use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::picard::{append, PicardInfo, PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::wall::{
-    remap_volume, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES, TOLERANCE,
+    remap_volume, WallProfiles, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES,
+    TOLERANCE,
 };
 use crate::elliptic::wall_normal::{shift_tangential, TangentGoals, LAYER_CUTOFF};
 use crate::elliptic::{nested3d, poisson3d};
@@ -41,6 +42,8 @@ const DAMPINGS: usize = 3;
 pub struct FaceCorrections {
     pub wall: Option<usize>,
     pub orthogonal: [bool; 6],
+    /// Where the wall columns' goal profiles come from ([`WallProfiles`]).
+    pub profiles: WallProfiles,
 }
 
 impl FaceCorrections {
@@ -81,7 +84,7 @@ pub fn grid_volume_corrected_with(
 ) -> Result<(VolumeResult, Control3)> {
     let targets = c
         .wall
-        .map(|w| WallTargets::new(faces, w, place))
+        .map(|w| WallTargets::with_profiles(faces, w, c.profiles, place))
         .transpose()?;
     let ortho: Vec<usize> = (0..6).filter(|&f| c.orthogonal[f]).collect();
     let mut pg = bilinear(&edge_functions(faces), place)?;

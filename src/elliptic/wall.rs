@@ -131,6 +131,18 @@ pub(crate) fn remap_column(v: &mut [f64], d: &[f64], t: &[f64]) -> f64 {
     err
 }
 
+/// Where the interior columns' goal profiles (distances from the wall) come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WallProfiles {
+    /// The bilinear interpolation of the four edges leaving the wall (module docs).
+    #[default]
+    Edges,
+    /// The transfinite interpolation of the columns of the four side faces
+    /// ([`super::wall_profile`]): a column next to a fixed side face (an interface gridded
+    /// before the volume) then follows that face's profile, not the edges'.
+    Faces,
+}
+
 /// Target distances from a wall face (module docs).
 #[derive(Clone, Debug)]
 pub struct WallTargets {
@@ -140,6 +152,9 @@ pub struct WallTargets {
     weights: Vec<[f64; 4]>,
     /// Distance from the wall of node j (counted from the wall) on the four edges leaving it.
     prof: [Vec<f64>; 4],
+    /// With [`WallProfiles::Faces`]: the whole goal column of each wall face node (face
+    /// order, `dims[normal]` distances each); empty otherwise.
+    cols: Vec<f64>,
 }
 
 impl WallTargets {
@@ -173,17 +188,45 @@ impl WallTargets {
             dims,
             weights,
             prof,
+            cols: Vec::new(),
         })
+    }
+
+    /// The targets of wall face `w` with the goal profiles from `profiles`.
+    pub fn with_profiles(
+        faces: &Faces,
+        w: usize,
+        profiles: WallProfiles,
+        place: &str,
+    ) -> Result<Self> {
+        let mut t = WallTargets::new(faces, w, place)?;
+        if profiles == WallProfiles::Faces {
+            t.cols =
+                super::wall_profile::face_columns(faces, w, &t.weights, &|n, j| t.edges_at(n, j));
+        }
+        Ok(t)
+    }
+
+    /// The target of the edges' bilinear interpolation (whatever the profiles).
+    #[inline]
+    pub(crate) fn edges_at(&self, n: [usize; 3], j: usize) -> f64 {
+        let (ta, tb) = tangents(self.w);
+        let na = face_dims(self.w, self.dims)[0];
+        let wt = &self.weights[n[ta] + na * n[tb]];
+        (0..4).map(|e| wt[e] * self.prof[e][j]).sum()
     }
 
     /// Target distance from the wall of the j-th node (from the wall) of the column at the
     /// wall node of block index `n`.
     #[inline]
     pub fn at(&self, n: [usize; 3], j: usize) -> f64 {
+        if self.cols.is_empty() {
+            return self.edges_at(n, j);
+        }
         let (ta, tb) = tangents(self.w);
         let na = face_dims(self.w, self.dims)[0];
-        let wt = &self.weights[n[ta] + na * n[tb]];
-        (0..4).map(|e| wt[e] * self.prof[e][j]).sum()
+        let m = self.dims[normal(self.w).0];
+        self.cols[(n[ta] + na * n[tb]) * m + j]
     }
 
     /// Target first-cell heights at the nodes of the wall face (face order).
@@ -418,6 +461,7 @@ pub fn grid_volume_wall_with(
     let c = FaceCorrections {
         wall: Some(w),
         orthogonal,
+        ..Default::default()
     };
     grid_volume_corrected(faces, &c, None, solver, params, place, progress)
 }

@@ -11,7 +11,7 @@ use crate::elliptic::orthogonal3d::{grid_volume_corrected_with, FaceCorrections}
 use crate::elliptic::picard::{PicardInfo, PicardParams, VolumeResult};
 use crate::elliptic::poisson3d;
 use crate::elliptic::volume::{grid_volume, progress_enabled};
-use crate::elliptic::wall::{check_kind, wall_targets, WallOptions};
+use crate::elliptic::wall::{check_kind, wall_targets, WallOptions, WallProfiles};
 use crate::elliptic::wall_normal::{wall_figure, WallFigure};
 use crate::grid::faces::parse_face;
 use crate::grid::faces::Faces;
@@ -166,21 +166,35 @@ pub(crate) fn corrections(
         })?;
         orthogonal[f] = true;
     }
+    let profiles = match v.wall_profiles.as_deref() {
+        None | Some("edges") => WallProfiles::Edges,
+        Some("faces") => WallProfiles::Faces,
+        Some(s) => {
+            return Err(Error::input(
+                place,
+                format!("wall_profiles = \"{s}\": expected \"edges\" or \"faces\""),
+            ))
+        }
+    };
     match wall {
         Some(w) => {
             orthogonal[w] |= v
                 .wall_orthogonal
                 .unwrap_or(WallOptions::default().orthogonal)
         }
-        None if v.wall_orthogonal.is_some() => {
+        None if v.wall_orthogonal.is_some() || v.wall_profiles.is_some() => {
             return Err(Error::input(
                 place,
-                "wall_orthogonal needs wall = \"F1\" … \"F6\"",
+                "wall_orthogonal and wall_profiles need wall = \"F1\" … \"F6\"",
             ))
         }
         None => {}
     }
-    Ok(FaceCorrections { wall, orthogonal })
+    Ok(FaceCorrections {
+        wall,
+        orthogonal,
+        profiles,
+    })
 }
 
 /// The transfinite start grid of volume k.
