@@ -132,7 +132,7 @@ const HOPELESS_MIN: usize = 64;
 /// Moves interior nodes within two cells of a folded cell to their max-min positions, sweep
 /// after sweep, until no cell is folded (by [`folded_cells`] with `tol`), `max_sweeps`
 /// sweeps are done, or 15 sweeps in a row did not lower the fewest folded cells yet; not at all
-/// if more than one cell in [`HOPELESS`] (and more than [`HOPELESS_MIN`]) is folded.
+/// if more than an eighth of the cells (and more than 64) are folded.
 /// Returns the number of folded cells left.
 pub fn untangle(g: &mut Grid2<2>, tol: f64, max_sweeps: usize) -> usize {
     let (ni, nj) = (g.ni(), g.nj());

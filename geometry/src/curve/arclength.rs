@@ -313,6 +313,12 @@ mod tests {
     use crate::curve::{Arc, Naca4, Polyline};
     use std::f64::consts::PI;
 
+    /// Deterministic round-off-like noise in [−a/2, a/2] at parameter `u`.
+    fn noise(u: f64, a: f64) -> f64 {
+        let h = u.to_bits().wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        ((h >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * a
+    }
+
     /// Test curve given by closures, with optional breakpoints.
     struct Fn3<P, D> {
         p: P,
@@ -423,10 +429,7 @@ mod tests {
         // A unit segment whose speed carries deterministic round-off-like noise of 1e-11
         // relative (as B-spline derivatives far from the origin do): the table must stay
         // small and the length right to the noise level.
-        let noise = |u: f64| {
-            let h = u.to_bits().wrapping_mul(0x9E37_79B9_7F4A_7C15);
-            ((h >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2e-11
-        };
+        let noise = |u: f64| noise(u, 2e-11);
         let c = Fn3 {
             p: |u: f64| Vec3::new(u, 0.0, 0.0),
             d: move |u: f64| Vec3::new(1.0 + noise(u), 0.0, 0.0),
@@ -442,10 +445,7 @@ mod tests {
     fn a_point_to_round_off_is_not_bisected_and_a_short_curve_still_is_resolved() {
         // A collapsed patch side (OpenVSP's wing-cap poles): the point (5, −3, 2) whose
         // derivative is round-off noise of 1e-16. It took MAX_PANELS panels before.
-        let noise = |u: f64| {
-            let h = u.to_bits().wrapping_mul(0x9E37_79B9_7F4A_7C15);
-            ((h >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 4e-16
-        };
+        let noise = |u: f64| noise(u, 4e-16);
         let pole = Fn3 {
             p: |_| Vec3::new(5.0, -3.0, 2.0),
             d: move |u: f64| Vec3::new(noise(u), noise(1.0 - u), 0.0),
