@@ -53,6 +53,21 @@ fn pixel_stats(px: &[u8]) -> (usize, usize) {
     (dark, coloured)
 }
 
+/// The distinct fill colours of an SVG picture's cell polygons.
+fn fill_colours(svg: &str) -> std::collections::BTreeSet<&str> {
+    svg.lines()
+        .filter(|l| l.starts_with("<polygon"))
+        .filter_map(|l| l.split("fill=\"").nth(1)?.get(..7))
+        .collect()
+}
+
+/// Runs shipped example `name` into `out` in directory `d`.
+fn run_example(d: &Path, name: &str, out: &str) {
+    let case = root().join("examples").join(name);
+    let o = ellipgrid(d, &["run", "-q", case.to_str().unwrap(), "-o", out]);
+    assert!(o.status.success(), "{}", text(&o));
+}
+
 #[test]
 fn every_example_gives_a_png_and_an_svg_of_the_requested_size() {
     let d = tmp();
@@ -100,12 +115,7 @@ fn every_example_gives_a_png_and_an_svg_of_the_requested_size() {
 #[test]
 fn close_up_colours_and_legend() {
     let d = tmp();
-    let case = root().join("examples/boundary_layer.toml");
-    let o = ellipgrid(
-        d.path(),
-        &["run", "-q", case.to_str().unwrap(), "-o", "bl.x"],
-    );
-    assert!(o.status.success(), "{}", text(&o));
+    run_example(d.path(), "boundary_layer.toml", "bl.x");
     let whole = ellipgrid(
         d.path(),
         &["plot", "bl.x", "-o", "whole.png", "--size", "400x300", "-q"],
@@ -258,11 +268,7 @@ fn blocks_in_colours_and_the_topology_of_a_multi_block_case() {
     }
     assert_eq!(t.matches("</text>").count(), 8 + 12 + 4);
     // The cells of the four blocks are filled with four colours.
-    let fills: std::collections::BTreeSet<&str> = t
-        .lines()
-        .filter(|l| l.starts_with("<polygon"))
-        .filter_map(|l| l.split("fill=\"").nth(1)?.get(..7))
-        .collect();
+    let fills = fill_colours(&t);
     assert_eq!(fills.len(), 4, "{fills:?}");
     let o = ellipgrid(
         d.path(),
@@ -312,24 +318,15 @@ fn blocks_in_colours_and_the_topology_of_a_multi_block_case() {
 #[test]
 fn selected_blocks_only_are_drawn() {
     let d = tmp();
-    let case = root().join("examples/naca0012_ogrid.toml");
-    let o = ellipgrid(
-        d.path(),
-        &["run", "-q", case.to_str().unwrap(), "-o", "g.x"],
-    );
-    assert!(o.status.success(), "{}", text(&o));
+    run_example(d.path(), "naca0012_ogrid.toml", "g.x");
     let polygons = |args: &[&str]| {
         let mut a = vec!["plot", "g.x", "-o", "s.svg", "-q", "--blocks"];
         a.extend(args);
         let o = ellipgrid(d.path(), &a);
         assert!(o.status.success(), "{args:?}: {}", text(&o));
         let t = std::fs::read_to_string(d.path().join("s.svg")).unwrap();
-        let fills: std::collections::BTreeSet<String> = t
-            .lines()
-            .filter(|l| l.starts_with("<polygon"))
-            .filter_map(|l| Some(l.split("fill=\"").nth(1)?.get(..7)?.to_string()))
-            .collect();
-        (t.matches("<polygon").count(), fills.len(), t)
+        let colours = fill_colours(&t).len();
+        (t.matches("<polygon").count(), colours, t)
     };
     let (all, colours, _) = polygons(&[]);
     assert_eq!(colours, 4);
