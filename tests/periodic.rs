@@ -489,3 +489,70 @@ fn the_periodic_grid_is_bit_identical_on_one_and_two_threads() {
         );
     }
 }
+
+#[test]
+fn a_wall_on_a_periodic_ring_holds_the_cuts_first_spacing_through_the_command_line() {
+    // The eccentric annulus (far field centred at x = 0.5) with the cut's first spacing 1e-3:
+    // without `wall` the first spacing is 0.23 … 0.28 of the cut's (measured: the control
+    // functions carry the cut's relative distribution, not its lengths); with `wall = true` on
+    // the inner circle every node of the ring is within 1 % of it (1.00008 … 1.00012,
+    // measured), as the report's "wall" entry says, and fold-free.
+    let t = annulus(
+        65,
+        25,
+        "interface = \"floating\"\ndistribution = { type = \"geometric\", first = 1e-3 }",
+    )
+    .replace(
+        "center = [0, 0], radius = 5",
+        "center = [1.5, 0], radius = 5",
+    )
+    .replace("at = [5, 0]", "at = [6.5, 0]");
+    let wall = t.replace("name = \"inner\"\n", "name = \"inner\"\nwall = true\n");
+    let d = tempfile::tempdir().unwrap();
+    let mut ratios = Vec::new();
+    for (name, case) in [("plain", &t), ("wall", &wall)] {
+        std::fs::write(d.path().join(format!("{name}.toml")), case).unwrap();
+        let (x, rep) = (format!("{name}.x"), format!("{name}.json"));
+        let o = ellipgrid(
+            d.path(),
+            &[
+                "run",
+                &format!("{name}.toml"),
+                "-o",
+                &x,
+                "--report",
+                &rep,
+                "-q",
+            ],
+        );
+        assert!(o.status.success(), "{}", text(&o));
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(d.path().join(&rep)).unwrap()).unwrap();
+        let b = &r["blocks"][0];
+        assert_eq!(b["quality"]["folded_cells"], 0);
+        assert_eq!(b["picard"]["converged"], true);
+        let f = ellipgrid::io::plot3d::read_plot3d(&d.path().join(&x)).unwrap();
+        let g = planar(&f.blocks[0]);
+        let first: Vec<f64> = (0..g.ni() - 1)
+            .map(|i| {
+                let (p, q) = (g.point(i, 0), g.point(i, 1));
+                (p[0] - q[0]).hypot(p[1] - q[1]) / 1e-3
+            })
+            .collect();
+        let lo = first.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = first.iter().copied().fold(0.0, f64::max);
+        ratios.push((lo, hi));
+        if name == "wall" {
+            let w = &b["wall"][0];
+            assert_eq!(w["edge"], "E3");
+            assert_eq!(w["nodes"], 64);
+            let (rlo, rhi) = (
+                w["ratio_min"].as_f64().unwrap(),
+                w["ratio_max"].as_f64().unwrap(),
+            );
+            assert!((rlo - lo).abs() < 1e-9 && (rhi - hi).abs() < 1e-9);
+        }
+    }
+    assert!(ratios[0].1 < 0.5, "{ratios:?}");
+    assert!(ratios[1].0 > 0.99 && ratios[1].1 < 1.01, "{ratios:?}");
+}

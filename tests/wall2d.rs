@@ -365,12 +365,13 @@ fn wall_input_errors_exit_2_naming_the_block_and_the_side() {
     );
     let r = run(d.path(), &both);
     assert_eq!(r["blocks"][0]["wall"][0]["edge"], "E3");
-    // A wall on a periodic block (a ring of floating edges).
+    // A wall on a periodic block (a ring of floating edges) with Laplace control functions.
     let ring = fs::read_to_string(root().join("examples/naca0012_oneblock.toml"))
         .unwrap()
         .replace("family = \"airfoil\"", "wall = true\nfamily = \"airfoil\"")
+        .replace("[solver]\n", "[solver]\ncontrol = \"laplace\"\n")
         .replace("../data/", &format!("{}/data/", root().display()));
-    rejects(&ring, &["periodic", "wall"]);
+    rejects(&ring, &["block 'oneblock'", "wall", "algebraic"]);
     // An edge marked `wall` in a volume topology.
     let vol = fs::read_to_string(root().join("examples/volume_topology_lid.toml")).unwrap();
     let vol = vol.replacen(

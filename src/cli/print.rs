@@ -47,8 +47,8 @@ pub fn block(b: &BlockReport) {
     }
     for w in &b.wall {
         println!(
-            "  wall {}: first spacing {:.3e} … {:.3e}, {:.3} … {:.3} of the side edges' spacing \
-             interpolated along the wall ({} nodes)",
+            "  wall {}: first spacing {:.3e} … {:.3e}, {:.3} … {:.3} of the target (the side \
+             edges' spacing interpolated along the wall; a periodic block's: its cut's) ({} nodes)",
             w.edge, w.first_min, w.first_max, w.ratio_min, w.ratio_max, w.nodes
         );
     }

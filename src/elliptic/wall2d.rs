@@ -36,7 +36,9 @@ use crate::solve::LinearSolver;
 use crate::{Error, Result};
 use serde::Serialize;
 
+mod periodic;
 mod targets;
+pub use periodic::{hold_wall_spacing_periodic, wall_spacing_periodic};
 use targets::{blend_targets, Targets};
 pub use targets::{WallPart, WallSide};
 
@@ -227,8 +229,8 @@ pub fn hold_wall_spacing<const D: usize>(
 /// # Errors
 /// As [`hold_wall_spacing`]; [`Error::Input`] for a wall part outside its side.
 pub fn hold_wall_spacing_on<const D: usize>(
-    mut x: Grid2<D>,
-    mut pg: ParamGrid,
+    x: Grid2<D>,
+    pg: ParamGrid,
     sides: &[WallSide],
     solver: &mut dyn LinearSolver,
     params: &PicardParams,
@@ -273,6 +275,38 @@ pub fn hold_wall_spacing_on<const D: usize>(
         .map(|((s, c), &f)| Targets::new(&x, c, s.part.as_ref(), f))
         .collect();
     let mut goals: Vec<Vec<Vec<f64>>> = vec![Vec::new(); cols.len()];
+    let remap = |trial: &mut ParamGrid, x: &Grid2<D>| {
+        cols.iter()
+            .zip(&targets)
+            .zip(&mut goals)
+            .zip(opposite.iter().zip(&fades))
+            .map(|(((c, t), g), (&o, &f))| remap_wall(trial, x, c, t, g, f, o))
+            .fold(0.0, f64::max)
+    };
+    let solve = |x: &mut Grid2<D>, pg: &ParamGrid, p: &PicardParams| {
+        let ctrl = Control2::from_algebraic(pg);
+        if !ctrl.all_finite() {
+            return Err(Error::input(
+                place,
+                "wall pass: control functions not finite",
+            ));
+        }
+        poisson2d::solve_timed(x, &ctrl, solver, p, 0.0, place).map(|(i, t)| (i, Some(t)))
+    };
+    passes(x, pg, remap, solve, params)
+}
+
+/// The correction passes of [`hold_wall_spacing_on`] and of the periodic blocks'
+/// [`periodic::hold_wall_spacing_periodic`]: `remap` moves the wall-normal parameters of a
+/// trial (returning the largest |ln(goal / d)| before it), `solve` re-solves [24] with the
+/// trial's control functions (and the time of one residual evaluation, for the work units).
+fn passes<const D: usize>(
+    mut x: Grid2<D>,
+    mut pg: ParamGrid,
+    mut remap: impl FnMut(&mut ParamGrid, &Grid2<D>) -> f64,
+    mut solve: impl FnMut(&mut Grid2<D>, &ParamGrid, &PicardParams) -> Result<(PicardInfo, Option<f64>)>,
+    params: &PicardParams,
+) -> Result<(Grid2<D>, Option<PicardInfo>)> {
     let loose = PicardParams {
         tolerance: params.tolerance.max(LOOSE_TOLERANCE),
         ..params.clone()
@@ -284,13 +318,7 @@ pub fn hold_wall_spacing_on<const D: usize>(
     let mut wu = f64::INFINITY;
     for _ in 0..MAX_PASSES {
         let mut trial = pg.clone();
-        let err = cols
-            .iter()
-            .zip(&targets)
-            .zip(&mut goals)
-            .zip(opposite.iter().zip(&fades))
-            .map(|(((c, t), g), (&o, &f))| remap_wall(&mut trial, &x, c, t, g, f, o))
-            .fold(0.0, f64::max);
+        let err = remap(&mut trial, &x);
         if err <= TOLERANCE {
             break;
         }
@@ -299,17 +327,12 @@ pub fn hold_wall_spacing_on<const D: usize>(
         let before = x.clone();
         let mut kept = false;
         for _ in 0..=DAMPINGS {
-            let ctrl = Control2::from_algebraic(&trial);
-            if ctrl.all_finite() {
-                if let Ok((step, t)) =
-                    poisson2d::solve_timed(&mut x, &ctrl, solver, &loose, 0.0, place)
-                {
-                    wu = wu.min(t);
-                    append(&mut info, step);
-                    if folded_at_start || quality_any(&x).folded_cells == 0 {
-                        kept = true;
-                        break;
-                    }
+            if let Ok((step, t)) = solve(&mut x, &trial, &loose) {
+                wu = wu.min(t.unwrap_or(f64::NAN));
+                append(&mut info, step);
+                if folded_at_start || quality_any(&x).folded_cells == 0 {
+                    kept = true;
+                    break;
                 }
             }
             x.clone_from(&before);
@@ -325,9 +348,8 @@ pub fn hold_wall_spacing_on<const D: usize>(
         pg = trial;
     }
     if info.is_some() && params.tolerance < loose.tolerance {
-        let ctrl = Control2::from_algebraic(&pg);
-        let (step, t) = poisson2d::solve_timed(&mut x, &ctrl, solver, params, 0.0, place)?;
-        wu = wu.min(t);
+        let (step, t) = solve(&mut x, &pg, params)?;
+        wu = wu.min(t.unwrap_or(f64::NAN));
         append(&mut info, step);
     }
     if let Some(i) = &mut info {

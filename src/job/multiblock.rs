@@ -5,15 +5,19 @@
 
 use super::multiblock_wall::partial_walls;
 use super::{surface_distance, BlockReport};
+use crate::algebraic::ControlKind;
 use crate::case::{BlockKind, LoadedCase};
 use crate::elliptic::orthogonal::grid_block_walls;
 use crate::elliptic::orthogonal::{grid_block_sides, Sides};
 use crate::elliptic::periodic;
 use crate::elliptic::picard::PicardInfo;
-use crate::elliptic::wall2d::{wall_spacing_on, wall_spacings, WallSide, WallSpacing2};
+use crate::elliptic::wall2d::{
+    hold_wall_spacing_periodic, wall_spacing_on, wall_spacing_periodic, wall_spacings, WallSide,
+    WallSpacing2,
+};
 use crate::grid::boundary::Boundary2;
 use crate::grid::topology::{Group, Topology};
-use crate::grid::Grid2;
+use crate::grid::{Edge, Grid2};
 use crate::io::Block;
 use crate::quality;
 use crate::quality::interface::{interface_smoothness, InterfaceSmoothness};
@@ -183,7 +187,7 @@ fn grid_group(
                 &place,
             )?;
             // The wall spacing along the group's sides (a row's pieces share its report).
-            let walls = group_walls(&r.grid, partial.as_deref(), g.wall);
+            let walls = group_walls(&r.grid, &bnd, g, partial.as_deref());
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality2d(&grid);
@@ -212,7 +216,7 @@ fn grid_group(
                 &place,
             )?;
             // The wall spacing along the group's sides (a row's pieces share its report).
-            let walls = group_walls(&r.grid, partial.as_deref(), g.wall);
+            let walls = group_walls(&r.grid, &bnd, g, partial.as_deref());
             for p in &g.pieces {
                 let grid = p.cut(&r.grid);
                 let q = quality::quality_surface(&grid);
@@ -314,15 +318,24 @@ fn solve_group<const D: usize>(
         return grid_block_walls(bnd, None, g.orthogonal, walls, ctrl, solver, params, place);
     }
     if g.periodic {
-        if g.wall.contains(&true) {
+        // the seam floats: periodic in i, its own solver (elliptic::periodic)
+        let walls = periodic_walls(g, partial);
+        if !walls.is_empty() && ctrl != ControlKind::Algebraic {
             return Err(Error::input(
                 place,
-                "a wall spacing (wall) is not held on a periodic block (a ring of floating \
-                 edges) yet: fix one edge of the ring",
+                "wall spacings need the algebraic control functions (control = \"algebraic\")",
             ));
         }
-        // the seam floats: periodic in i, its own solver (elliptic::periodic)
-        return periodic::grid_block(bnd, None, g.orthogonal, ctrl, params, place);
+        let r = periodic::grid_block(bnd, None, g.orthogonal, ctrl, params, place)?;
+        if walls.is_empty() {
+            return Ok(r);
+        }
+        let (grid, held) = hold_wall_spacing_periodic(r.grid, bnd, &walls, params, place)?;
+        let mut picard = r.picard;
+        if let Some(h) = held {
+            picard.append(h);
+        }
+        return Ok(crate::elliptic::picard::Solved { grid, picard });
     }
     let sides = Sides {
         orthogonal: g.orthogonal,
@@ -332,14 +345,34 @@ fn solve_group<const D: usize>(
 }
 
 /// The wall spacing along a group's wall sides: the partial walls' if any, else the whole
-/// flagged sides'.
+/// flagged sides'; a periodic group's against its cut's first spacing.
 fn group_walls<const D: usize>(
     grid: &Grid2<D>,
+    bnd: &Boundary2<D>,
+    g: &Group,
     partial: Option<&[WallSide]>,
-    walls: [bool; 4],
 ) -> Vec<WallSpacing2> {
+    if g.periodic {
+        return periodic_walls(g, partial)
+            .iter()
+            .map(|s| wall_spacing_periodic(grid, bnd, s.edge))
+            .collect();
+    }
     match partial {
         Some(w) => w.iter().map(|s| wall_spacing_on(grid, s)).collect(),
-        None => wall_spacings(grid, walls),
+        None => wall_spacings(grid, g.wall),
+    }
+}
+
+/// A periodic group's wall sides: the partial walls' list (it carries `wall_fade`), else
+/// the whole flagged sides.
+fn periodic_walls(g: &Group, partial: Option<&[WallSide]>) -> Vec<WallSide> {
+    match partial {
+        Some(w) => w.to_vec(),
+        None => Edge::ALL
+            .into_iter()
+            .filter(|e| g.wall[e.index()])
+            .map(WallSide::whole)
+            .collect(),
     }
 }

@@ -300,3 +300,62 @@ fn opposite_walls_each_hold_their_spacing() {
         assert!(h.ratio_min > 0.99 && h.ratio_max < 1.01, "held {e}: {h:?}");
     }
 }
+
+/// A ring between an ellipse (semi-axes 1, 0.3) and the circle of radius 5, periodic in i
+/// (E1 = E2 the cut along +x), `ni` × `nj` nodes, the cut geometric from `h`.
+fn ellipse_ring(ni: usize, nj: usize, h: f64) -> Boundary2<2> {
+    let ring = |a: f64, b: f64| -> Vec<[f64; 2]> {
+        (0..ni)
+            .map(|i| {
+                let t = std::f64::consts::TAU * (i % (ni - 1)) as f64 / (ni - 1) as f64;
+                [a * t.cos(), b * t.sin()]
+            })
+            .collect()
+    };
+    let cut: Vec<[f64; 2]> = geometric(nj, 4.0, h)
+        .iter()
+        .map(|&r| [1.0 + r, 0.0])
+        .collect();
+    block(cut.clone(), cut, ring(1.0, 0.3), ring(5.0, 5.0))
+}
+
+#[test]
+fn a_periodic_ring_holds_the_cuts_first_spacing_all_round() {
+    // Without the passes the first spacing follows the ellipse's curvature (0.14 … 0.49 of the
+    // cut's 1e-4, measured); with them every node of the ring is within 0.5 % of it (0.9993 …
+    // 1.0028 in 15 steps, measured), the seam's copies bit-identical and the grid fold-free.
+    let b = ellipse_ring(97, 41, 1e-4);
+    let params = PicardParams::default();
+    let r = crate::elliptic::periodic::grid_block(
+        &b,
+        None,
+        [false; 4],
+        ControlKind::Algebraic,
+        &params,
+        "ring",
+    )
+    .unwrap();
+    let before = wall_spacing_periodic(&r.grid, &b, Edge::E3);
+    assert!(
+        before.ratio_min < 0.8 || before.ratio_max > 1.25,
+        "{before:?}"
+    );
+    let (g, info) =
+        hold_wall_spacing_periodic(r.grid, &b, &[WallSide::whole(Edge::E3)], &params, "ring")
+            .unwrap();
+    let info = info.expect("passes ran");
+    assert!(info.converged, "{} steps", info.steps);
+    let after = wall_spacing_periodic(&g, &b, Edge::E3);
+    assert_eq!(after.nodes, 96);
+    assert!(
+        after.ratio_min > 0.995 && after.ratio_max < 1.005,
+        "{after:?}"
+    );
+    for j in 0..g.nj() {
+        assert_eq!(g.point(0, j), g.point(g.ni() - 1, j));
+    }
+    assert_eq!(crate::quality::quality_any(&g).folded_cells, 0);
+    // a wall on the cut is refused
+    let e = hold_wall_spacing_periodic(g, &b, &[WallSide::whole(Edge::E1)], &params, "ring");
+    assert!(e.unwrap_err().to_string().contains("E1"));
+}
