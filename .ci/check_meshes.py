@@ -67,6 +67,10 @@ ALLOWED = {
     # faces, i <= 3 and i >= 59, max 43; README "Volume blocks"). Wall cells of 1e-5 chord
     # at the tip give the aspect ratio (max 2035).
     "wing_m6_co": ["***Max skewness", HIGH_ASPECT],
+    # The ONERA M6 four-block C-O grid (examples/m6): wall cells of 1e-5 local chord give the
+    # aspect ratio (max 2252 at full size); no highly skewed face since the spanwise steps at
+    # the tip match those beyond the 180-degree edges (max skewness 3.69; README "ONERA M6").
+    "wing_m6_4block": [HIGH_ASPECT],
 }
 
 

@@ -41,6 +41,11 @@ for ex in examples/*.toml; do
     conns+=("$work/${name}_3d.x" "$work/$name.conn")
   fi
 done
+# The ONERA M6 four-block C–O grid (examples/m6, outside the loop above: ~40 s at full size):
+# its solver mesh through checkMesh (ALLOWED in check_meshes.py: the aspect ratio only).
+"$exe" run -q examples/m6/wing_m6_4block.toml -o "$work/wing_m6_4block_run.x" \
+  -o "$work/wing_m6_4block.conn"
+meshes+=("$work/wing_m6_4block_run.x:$work/wing_m6_4block.conn")
 # The connectivity of CAD face blocks (`step grid … -o .conn`): the plate's hole rings, its
 # cylinder faces' seams and the faces' common edges.
 "$exe" step grid data/step/plate_with_holes.step --all --ni 9 --nj 9 -q \

@@ -37,9 +37,11 @@
 //! had wrongly oriented face pyramids). The far wake's streamwise nodes are the wake sheet's,
 //! scaled (each far node above its sheet node): the mean kink across the wake sheet fell from
 //! 77° to 18°, and with the wake sheet floating (its nodes moving with the wake volumes) to
-//! about 2°. Left: the kinks across the other faces between the volumes (means 54–68° at
-//! full size: those faces are gridded on their own before the volumes), checkMesh's skewed
-//! faces, and the run time (minutes; README, "ONERA M6").
+//! about 2°. The spanwise steps at the tip match the steps beyond the 180° edges of the wing
+//! plane (below, "Along the span"): checkMesh finds no highly skewed face (it found 64, max
+//! skewness 5.35, with 1.2e-3 everywhere). Left: the kinks across the other faces between the
+//! volumes (means 57–69° at full size: those faces are gridded on their own before the
+//! volumes; README, "ONERA M6").
 
 /// The interior faces whose nodes float with the volumes (`interface = "floating"`): the wake
 /// sheet (mean kink 18.4° → 2.2° at 33 × 33 × 25). Floating `ahead` too halves its kink but
@@ -333,6 +335,9 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
          # The wake sheet floats (interface = \"floating\"): its interior nodes move with\n\
          # the wake volumes until the grid crosses it as inside one block (mean kink 18°\n\
          # fixed, 2° floating); floating the other interior faces does not work yet.\n\
+         # The spanwise steps at the tip (le_line, te_line, out_line) match the steps beyond\n\
+         # the 180° edges of the wing plane there, so that checkMesh finds no highly skewed\n\
+         # face at the tip's leading and trailing edges (examples/make_wing_m6.rs).\n\
          #\n\
          #   cargo run --release -- run examples/m6/wing_m6_4block.toml -o m6.x -o m6.conn\n\n",
     );
@@ -553,18 +558,32 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
         None,
         vin(Some(1e-3), None),
     );
-    // Along the span (k), clustered towards the tip.
-    let spanwise = vin(Some(0.04), Some(1.2e-3));
-    e("le_line", "le_root", "le_tip", nk, None, spanwise.clone());
-    e("te_line", "te_root", "te_tip", nk, None, spanwise.clone());
+    // Along the span (k), clustered towards the tip. Each of these edges ends on a 180° block
+    // edge in the wing plane (ahead_tip, wake_tip), where the face beyond the tip (tipplane,
+    // waketip) continues its face (ahead, wake sheet) in the same plane; the cells there are
+    // wedges spanning both sides of the edge (`algebraic::flat_edge` maps them as w ↦ w²,
+    // which wants the same spacing on both sides). With a spanwise last step much longer than
+    // the step beyond the edge, the cell centres of the tip layer lie far inboard of their
+    // faces in the wing plane: checkMesh found "highly skewed faces" (skewness up to 7.3 > 4)
+    // at the tip's leading and trailing edges with 1.2e-3 everywhere. So the last spanwise
+    // step is the tip edge's chordwise step at the leading edge (1e-3 tip chord), out_tip's
+    // first step (1e-3) at the outflow, and at the trailing edge, where waketip starts with
+    // the wall spacing (2e-5 tip chord), 1.5e-4, a compromise measured at 33, 49 and 65
+    // nodes (README, "ONERA M6"): 1.2e-3 left skewness 7.3; 1.8e-4 passed at 33 and 65
+    // nodes but not at 49 (4.1); 1e-4 passed but wing_up and wing_lo converged 3e-3 apart
+    // (no longer mirror images) at 33 nodes; 9.1e-5 and 7e-5 left wall lines next to the
+    // tip's trailing edge 5.7° (65 nodes) and 30° (49) off the normal.
+    let spanwise = |last: f64| vin(Some(0.04), Some(last));
     e(
-        "out_line",
-        "out_root",
-        "out_tip",
+        "le_line",
+        "le_root",
+        "le_tip",
         nk,
         None,
-        spanwise.clone(),
+        spanwise(1e-3 * cb),
     );
+    e("te_line", "te_root", "te_tip", nk, None, spanwise(1.5e-4));
+    e("out_line", "out_root", "out_tip", nk, None, spanwise(1e-3));
     e("far_ahead", "fa_root", "fa_tip", nk, None, vin(None, None));
     e(
         "far_te_up",
