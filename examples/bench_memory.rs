@@ -203,12 +203,17 @@ fn run_one(spec: &str) {
         );
         return;
     }
+    let (name, lean) = match name.strip_suffix("-lean") {
+        Some(base) => (base, true),
+        None => (name, false),
+    };
     let b = match name {
         "curved" => curved(n),
         "dented" => dented(n),
         _ => panic!("unknown case {name} (curved, dented, box)"),
     };
-    let mut solver = by_name("multigrid").expect("solver");
+    // `curved-lean:N`, `dented-lean:N`: the multigrid with lean y-lines
+    let mut solver = by_name(if lean { "multigrid-lean" } else { "multigrid" }).expect("solver");
     let t0 = Instant::now();
     let (r, info) = grid_block_nested(&b, ControlKind::Algebraic, solver.as_mut(), &params, name)
         .expect("grid");
@@ -216,7 +221,7 @@ fn run_one(spec: &str) {
     let peak = peak_rss();
     let folded = quality2d(&r.grid).folded_cells;
     report(
-        &format!("{name} {n}^2"),
+        &format!("{name}{} {n}^2", if lean { "-lean" } else { "" }),
         n * n,
         secs,
         info.work_units,
