@@ -153,8 +153,8 @@ pub struct MgParams {
     /// Memory-lean y-lines (`yline.rs`): the y-line smoother keeps only one factor per
     /// unknown and reads the couplings from the operator, instead of a scaled copy of the
     /// stencil (72 → 8 bytes per unknown and level; the same lines solved, equal to
-    /// round-off). Slower: a cycle costs ~1.5× at 1023² (the operator read in column strips),
-    /// a whole grid 17–20 % more CPU time. Default false.
+    /// round-off). Slower: the y-sweep costs 2–2.5× the line operator's from memory (the
+    /// operator read in column strips), a whole 2D grid 12–20 % more CPU time. Default false.
     pub lean_y_lines: bool,
 }
 
