@@ -7,7 +7,9 @@
 //! (the unit square with a deep mushroom-shaped dent in its top side, whose transfinite start
 //! folds, N² nodes) and `box:N` (the warped, wall-clustered box of `bench_volume.rs`, N³
 //! nodes), each gridded by the library as the CLI does it (default solver and parameters:
-//! multigrid, nested iteration, tolerance 1e-10). Default: `curved:2049 dented:2049 box:129`.
+//! multigrid, nested iteration, tolerance 1e-10; `curved-lean:N`, `dented-lean:N`: with
+//! `linear = "multigrid-lean"`, the multigrid's memory-lean y-lines). Default:
+//! `curved:2049 dented:2049 box:129`.
 //! Every case runs in a fresh process of this example (the peak of a process only grows), and
 //! prints one line: nodes, seconds, work units, Picard steps per level, folded cells, peak RSS
 //! in MB and in bytes per node. The peak includes the boundary, the final grid and the

@@ -12,7 +12,7 @@ use crate::solve::LinearSolver;
 /// "multigrid" ([`MultigridSafe`] with the default [`MgParams`]: F(1,1) cycles with
 /// alternating zebra line Gauss–Seidel, Bi-CGSTAB as the fallback; the default of case files)
 /// or "multigrid-lean" (the same with [`MgParams::lean_y_lines`]: ~85 bytes per node less,
-/// ~20 % more time).
+/// ~17 % more CPU time).
 pub fn by_name(name: &str) -> Result<Box<dyn LinearSolver>, String> {
     match name {
         "direct" => Ok(Box::new(DirectLu::new())),

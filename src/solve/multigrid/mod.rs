@@ -154,7 +154,7 @@ pub struct MgParams {
     /// unknown and reads the couplings from the operator, instead of a scaled copy of the
     /// stencil (72 → 8 bytes per unknown and level; the same lines solved, equal to
     /// round-off). Slower: the y-sweep costs 2–2.5× the line operator's from memory (the
-    /// operator read in column strips), a whole 2D grid 12–20 % more CPU time. Default false.
+    /// operator read in column strips), a whole 2D grid 16–18 % more CPU time. Default false.
     pub lean_y_lines: bool,
 }
 
