@@ -7,7 +7,9 @@
 //! (the unit square with a deep mushroom-shaped dent in its top side, whose transfinite start
 //! folds, N² nodes) and `box:N` (the warped, wall-clustered box of `bench_volume.rs`, N³
 //! nodes), each gridded by the library as the CLI does it (default solver and parameters:
-//! multigrid, nested iteration, tolerance 1e-10). Default: `curved:2049 dented:2049 box:129`.
+//! multigrid, nested iteration, tolerance 1e-10; `curved-lean:N`, `dented-lean:N`: with
+//! `linear = "multigrid-lean"`, the multigrid's memory-lean y-lines). Default:
+//! `curved:2049 dented:2049 box:129`.
 //! Every case runs in a fresh process of this example (the peak of a process only grows), and
 //! prints one line: nodes, seconds, work units, Picard steps per level, folded cells, peak RSS
 //! in MB and in bytes per node. The peak includes the boundary, the final grid and the
@@ -203,12 +205,17 @@ fn run_one(spec: &str) {
         );
         return;
     }
+    let (name, lean) = match name.strip_suffix("-lean") {
+        Some(base) => (base, true),
+        None => (name, false),
+    };
     let b = match name {
         "curved" => curved(n),
         "dented" => dented(n),
         _ => panic!("unknown case {name} (curved, dented, box)"),
     };
-    let mut solver = by_name("multigrid").expect("solver");
+    // `curved-lean:N`, `dented-lean:N`: the multigrid with lean y-lines
+    let mut solver = by_name(if lean { "multigrid-lean" } else { "multigrid" }).expect("solver");
     let t0 = Instant::now();
     let (r, info) = grid_block_nested(&b, ControlKind::Algebraic, solver.as_mut(), &params, name)
         .expect("grid");
@@ -216,7 +223,7 @@ fn run_one(spec: &str) {
     let peak = peak_rss();
     let folded = quality2d(&r.grid).folded_cells;
     report(
-        &format!("{name} {n}^2"),
+        &format!("{name}{} {n}^2", if lean { "-lean" } else { "" }),
         n * n,
         secs,
         info.work_units,

@@ -93,6 +93,36 @@ fn multigrid_default_and_names() {
     assert!(by_name("gauss").is_err());
     let p = PicardParams::default();
     assert!(p.nested_for("multigrid") && !p.nested_for("direct-lu"));
+    // the lean y-lines are the multigrid too (nested iteration by default)
+    assert_eq!(by_name("multigrid-lean").unwrap().name(), "multigrid");
+}
+
+/// The memory-lean y-lines (`MgParams::lean_y_lines`, "multigrid-lean") give the grid of the
+/// direct solver and of the default multigrid on the boundary-layer block (y-lines carry the
+/// wall-normal coupling there), in the same Picard steps as the default multigrid.
+#[test]
+fn lean_y_lines_give_the_same_grids() {
+    let b = boundary_layer(97, 65);
+    let direct = grid(&b, &mut DirectLu::new(), false);
+    let run = |name: &str| {
+        let mut solver = by_name(name).unwrap();
+        let r = grid_block(
+            &b,
+            None,
+            ControlKind::Algebraic,
+            solver.as_mut(),
+            &params(true),
+            "test",
+        )
+        .unwrap();
+        assert!(r.picard.converged, "{:?}", r.picard.history);
+        r
+    };
+    let (default, lean) = (run("multigrid"), run("multigrid-lean"));
+    assert!(max_diff(&direct, &lean.grid) < SAME);
+    assert!(max_diff(&default.grid, &lean.grid) < SAME);
+    assert_eq!(default.picard.steps, lean.picard.steps);
+    assert_eq!(default.picard.coarse_steps, lean.picard.coarse_steps);
 }
 
 #[test]

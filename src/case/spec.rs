@@ -92,7 +92,8 @@ pub struct FlowSpec {
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
     /// Linear solver of each Picard step: "multigrid" (default; with nested iteration unless
-    /// `nested = false`) or "direct" (sparse LU).
+    /// `nested = false`), "multigrid-lean" (the same with less memory and more time,
+    /// `MgParams::lean_y_lines`) or "direct" (sparse LU).
     pub linear: String,
     /// Control functions: "algebraic" (the paper's, default) or "laplace" (all zero).
     pub control: ControlKind,

@@ -68,7 +68,8 @@ enum Command {
         /// Regrid only these blocks (1-based, comma separated), e.g. `--blocks 1,3`.
         #[arg(long, value_delimiter = ',', value_name = "K,..")]
         blocks: Option<Vec<usize>>,
-        /// Linear solver of each Picard step: "multigrid" (default) or "direct".
+        /// Linear solver of each Picard step: "multigrid" (default), "multigrid-lean" (less
+        /// memory, slower) or "direct".
         #[arg(long, default_value = "multigrid")]
         linear: String,
         /// Picard tolerance (max node update / block diameter).

@@ -14,6 +14,7 @@
 use crate::solve::multigrid::relax::{pad, padded_len, residual, yzebra, Zeroed};
 use crate::solve::multigrid::setup::Hierarchy;
 use crate::solve::multigrid::xline::xzebra;
+use crate::solve::multigrid::yline::ysweep;
 use crate::solve::multigrid::{interp, Cycle, Smoother};
 
 /// Vectors of one level, all padded (see [`crate::solve::multigrid::relax::pad`]).
@@ -103,14 +104,19 @@ impl Hierarchy {
                     continue;
                 }
                 let along_x = (i == 0) != (post && POST_REVERSED);
-                for c in [FIRST_COLOUR, 1 - FIRST_COLOUR] {
-                    if along_x {
+                if along_x {
+                    for c in [FIRST_COLOUR, 1 - FIRST_COLOUR] {
                         xzebra(&lev.a, &lev.xop, nx, ny, x, b, c);
-                        last = Zeroed::Rows(c);
-                    } else {
-                        yzebra(&lev.yop, nx, ny, x, b, c);
-                        last = Zeroed::Cols(c);
                     }
+                    last = Zeroed::Rows(1 - FIRST_COLOUR);
+                } else if !lev.ycp.is_empty() {
+                    ysweep(&lev.a, &lev.ycp, nx, ny, x, b, FIRST_COLOUR);
+                    last = Zeroed::Cols(1 - FIRST_COLOUR);
+                } else {
+                    for c in [FIRST_COLOUR, 1 - FIRST_COLOUR] {
+                        yzebra(&lev.yop, nx, ny, x, b, c);
+                    }
+                    last = Zeroed::Cols(1 - FIRST_COLOUR);
                 }
             }
         }

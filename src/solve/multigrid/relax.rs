@@ -9,7 +9,9 @@
 //! eliminates the right-hand side. The y-line operator is stored by column blocks ([`YLineOp`]): within a block of
 //! [`YLineOp::W`] columns, one colour's records of all rows are contiguous, so that a half
 //! sweep streams through memory while the block's columns stay in cache between the forward
-//! elimination and the back substitution.
+//! elimination and the back substitution. With [`crate::solve::multigrid::MgParams`]`::lean_y_lines`
+//! the y-lines keep no line operator and read the stencil itself (`yline`): 64 bytes per
+//! unknown less, but slower (see there).
 //!
 //! All vectors here are *padded*: point `p = i + nx j` lives at `v[pad + p]` with
 //! `pad = nx + 1` zeros before row 0 and after row `ny − 1` (see [`pad`]), so that the nine
@@ -254,7 +256,8 @@ pub(super) fn yzebra(yop: &YLineOp, nx: usize, ny: usize, x: &mut [f64], b: &[f6
     });
 }
 
-/// One row of `out = b − A x` (or `A x` when `b` is `None`); returns Σ out².
+/// One row of `out = b − A x` (or `A x` when `b` is `None`) at the columns
+/// `i ≡ colour (mod 2)` (every column if `colour` is 2; 0 at the others); returns Σ out².
 /// `base` is the padded index of the row's first unknown.
 #[inline]
 fn row_residual(
@@ -264,6 +267,7 @@ fn row_residual(
     nx: usize,
     b: Option<&[f64]>,
     out: &mut [f64],
+    colour: usize,
 ) -> f64 {
     // window of x covering the row and its neighbours: x[base - nx - 1 .. base + 2 nx + 1]
     let w = &x[base - nx - 1..base + 2 * nx + 1];
@@ -271,7 +275,7 @@ fn row_residual(
     let a = &a[..nx];
     let out = &mut out[..nx];
     let mut ss = 0.0;
-    for i in 0..nx {
+    let mut cell = |i: usize| {
         let m = &a[i];
         let v = m[0] * s[i]
             + m[1] * s[i + 1]
@@ -288,6 +292,18 @@ fn row_residual(
         };
         out[i] = r;
         ss += r * r;
+    };
+    if colour < 2 {
+        for i in (colour..nx).step_by(2) {
+            cell(i);
+        }
+        for i in (1 - colour..nx).step_by(2) {
+            out[i] = 0.0;
+        }
+    } else {
+        for i in 0..nx {
+            cell(i);
+        }
     }
     ss
 }
@@ -334,7 +350,8 @@ fn for_rows(
 
 /// `r = b − A x` on padded vectors; returns ‖r‖₂². `zeroed` names lines whose residual is
 /// known to vanish: they are set to 0 without being computed (rows from `a`, columns from the
-/// y-line operator `yop`, so that only half of an operator is read).
+/// y-line operator `yop` if there is one, so that only half of an operator is read, else from
+/// `a`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn residual(
     a: &[[f64; 9]],
@@ -354,19 +371,23 @@ pub(super) fn residual(
         (Zeroed::Cols(zc), Some(yop)) if yop.op.len() == nx * ny => {
             residual_cols(yop, nx, ny, x, b, r, 1 - zc)
         }
-        (Zeroed::Rows(zc), _) => for_rows(nx, ny, r, |j, out| {
-            if j % 2 == zc {
-                out.fill(0.0);
-                0.0
-            } else {
-                let bb = &b[pd + j * nx..pd + (j + 1) * nx];
-                row_residual(&a[j * nx..(j + 1) * nx], x, pd + j * nx, nx, Some(bb), out)
-            }
-        }),
-        _ => for_rows(nx, ny, r, |j, out| {
-            let bb = &b[pd + j * nx..pd + (j + 1) * nx];
-            row_residual(&a[j * nx..(j + 1) * nx], x, pd + j * nx, nx, Some(bb), out)
-        }),
+        _ => {
+            // the columns computed: all, or those of the colour not relaxed last
+            let colour = match zeroed {
+                Zeroed::Cols(zc) => 1 - zc,
+                _ => 2,
+            };
+            for_rows(nx, ny, r, |j, out| {
+                if zeroed == Zeroed::Rows(j % 2) {
+                    out.fill(0.0);
+                    0.0
+                } else {
+                    let bb = &b[pd + j * nx..pd + (j + 1) * nx];
+                    let a = &a[j * nx..(j + 1) * nx];
+                    row_residual(a, x, pd + j * nx, nx, Some(bb), out, colour)
+                }
+            })
+        }
     }
 }
 
@@ -442,6 +463,6 @@ pub(super) fn apply(a: &[[f64; 9]], nx: usize, ny: usize, x: &[f64], y: &mut [f6
     assert_eq!(x.len(), padded_len(nx, ny));
     assert_eq!(a.len(), nx * ny);
     for_rows(nx, ny, y, |j, out| {
-        row_residual(&a[j * nx..(j + 1) * nx], x, pd + j * nx, nx, None, out)
+        row_residual(&a[j * nx..(j + 1) * nx], x, pd + j * nx, nx, None, out, 2)
     })
 }

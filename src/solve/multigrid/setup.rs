@@ -9,6 +9,7 @@ use crate::solve::multigrid::interp::{build_transfer, restriction};
 use crate::solve::multigrid::rap::galerkin;
 use crate::solve::multigrid::relax::{factor_y, YLineOp};
 use crate::solve::multigrid::xline::factor_x;
+use crate::solve::multigrid::yline;
 use crate::solve::multigrid::{MgParams, Restriction, Smoother};
 use crate::solve::stencil9::Stencil9;
 use crate::solve::SolveError;
@@ -22,9 +23,11 @@ pub(super) struct Level {
     /// over by `adopt`; empty after `give_back`).
     pub a: Vec<[f64; 9]>,
     /// x-line factors and y-line operator of the smoother (see `relax.rs`; empty if the
-    /// smoother does not use them, and on the coarsest level).
+    /// smoother does not use them, and on the coarsest level), or with lean y-lines their
+    /// factors `ycp` instead of `yop` (see `yline.rs`).
     pub xop: Vec<[f64; 2]>,
     pub yop: YLineOp,
+    pub ycp: Vec<f64>,
     /// Prolongation and restriction stars to the next coarser level (one per coarse point;
     /// empty on the coarsest level; `r` also empty with `R = Pᵀ`, see
     /// `interp::restriction`).
@@ -96,7 +99,9 @@ impl Hierarchy {
                     if params.smoother.uses_x() {
                         lev.xop.resize(nx * ny, [0.0; 2]);
                     }
-                    if params.smoother.uses_y() {
+                    if params.smoother.uses_y() && params.lean_y_lines {
+                        lev.ycp.resize(nx * ny, 0.0);
+                    } else if params.smoother.uses_y() {
                         lev.yop.resize(nx * ny);
                     }
                 }
@@ -120,6 +125,7 @@ impl Hierarchy {
             && p.max_levels == q.max_levels
             && p.smoother == q.smoother
             && p.restriction == q.restriction
+            && p.lean_y_lines == q.lean_y_lines
     }
 
     /// Copies `a` (same size as level 0) into level 0, clipped; rejects a bad diagonal.
@@ -189,6 +195,9 @@ impl Hierarchy {
         if !l0.yop.is_empty() {
             factor_y(&l0.a, nx, ny, &mut l0.yop)?;
         }
+        if !l0.ycp.is_empty() {
+            yline::factor_y(&l0.a, nx, ny, &mut l0.ycp)?;
+        }
         Ok(())
     }
 
@@ -214,6 +223,9 @@ impl Hierarchy {
             }
             if !lev.yop.is_empty() {
                 factor_y(&lev.a, lev.nx, lev.ny, &mut lev.yop)?;
+            }
+            if !lev.ycp.is_empty() {
+                yline::factor_y(&lev.a, lev.nx, lev.ny, &mut lev.ycp)?;
             }
             build_transfer(&lev.a, lev.nx, lev.ny, &mut lev.p, &mut lev.r, transpose)?;
             let r = restriction(&lev.p, &lev.r);
