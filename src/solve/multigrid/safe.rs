@@ -56,6 +56,12 @@ impl MultigridSafe {
         self.direct.load(Ordering::Relaxed)
     }
 
+    /// The LU for a system of `n` unknowns: once turned to it, and small enough (a finer level
+    /// of nested iteration above the limit tries the multigrid again).
+    fn use_direct(&self, n: usize) -> bool {
+        self.is_direct() && n <= Self::DIRECT_LIMIT
+    }
+
     /// `x = A⁻¹ b` by the sparse LU of the fine operator (factored on the first call after
     /// each setup).
     fn solve_direct(&self, b: &[f64], x: &mut [f64]) -> Result<SolveInfo, SolveError> {
@@ -111,7 +117,7 @@ impl LinearSolver for MultigridSafe {
     }
 
     fn solve(&self, b: &[f64], x: &mut [f64], ctl: &SolveControl) -> Result<SolveInfo, SolveError> {
-        if self.is_direct() {
+        if self.use_direct(b.len()) {
             return self.solve_direct(b, x);
         }
         // the fallback restarts from the initial guess: kept only when it is not zero (a
@@ -153,7 +159,7 @@ impl LinearSolver for MultigridSafe {
 
     /// One cycle of the multigrid (no fallback: a preconditioner need not converge).
     fn precondition(&self, b: &[f64], x: &mut [f64]) -> Result<(), SolveError> {
-        if self.is_direct() {
+        if self.use_direct(b.len()) {
             return self.solve_direct(b, x).map(|_| ());
         }
         LinearSolver::precondition(&self.mg, b, x)
