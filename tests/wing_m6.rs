@@ -136,55 +136,28 @@ fn four_block_c_o_grid_is_fold_free_and_holds_the_wall_spacing() {
     assert!(conn.contains("wall") && conn.contains("farfield"), "{conn}");
 }
 
-type V3 = [f64; 3];
-
-fn sub3(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot3(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross3(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn norm3(a: V3) -> f64 {
-    dot3(a, a).sqrt()
-}
+type V3 = nalgebra::Vector3<f64>;
 
 /// OpenFOAM's centre and area vector of a face (primitiveMesh: triangles about the mean of
 /// its vertices, the centre weighted by their areas).
 fn foam_face(p: &[V3; 4]) -> (V3, V3) {
-    let mut mean = [0.0; 3];
-    for q in p {
-        for c in 0..3 {
-            mean[c] += q[c] / 4.0;
-        }
-    }
-    let (mut sum_n, mut sum_a, mut sum_ac) = ([0.0; 3], 0.0, [0.0; 3]);
+    let mean = p.iter().sum::<V3>() / 4.0;
+    let (mut sum_n, mut sum_a, mut sum_ac) = (V3::zeros(), 0.0, V3::zeros());
     for m in 0..4 {
         let (a, b) = (p[m], p[(m + 1) % 4]);
-        let n = cross3(sub3(b, a), sub3(mean, a));
-        let area = norm3(n);
+        let n = (b - a).cross(&(mean - a));
+        let area = n.norm();
         sum_a += area;
-        for c in 0..3 {
-            sum_n[c] += n[c];
-            sum_ac[c] += area * (a[c] + b[c] + mean[c]);
-        }
+        sum_n += n;
+        sum_ac += area * (a + b + mean);
     }
-    (sum_ac.map(|v| v / (3.0 * sum_a)), sum_n.map(|v| 0.5 * v))
+    (sum_ac / (3.0 * sum_a), 0.5 * sum_n)
 }
 
 /// The six faces of cell (i, j, k), outward for a right-handed block, in the order
 /// i−, i+, j−, j+, k−, k+.
 fn cell_faces(g: &ellipgrid::Grid3, i: usize, j: usize, k: usize) -> [[V3; 4]; 6] {
-    let n = |a: usize, b: usize, c: usize| g.point(i + a, j + b, k + c);
+    let n = |a: usize, b: usize, c: usize| V3::from(g.point(i + a, j + b, k + c));
     [
         [n(0, 0, 0), n(0, 0, 1), n(0, 1, 1), n(0, 1, 0)],
         [n(1, 0, 0), n(1, 1, 0), n(1, 1, 1), n(1, 0, 1)],
@@ -199,21 +172,14 @@ fn cell_faces(g: &ellipgrid::Grid3, i: usize, j: usize, k: usize) -> [[V3; 4]; 6
 /// the face centres to the faces.
 fn foam_cell_centre(faces: &[[V3; 4]; 6]) -> V3 {
     let geo: Vec<(V3, V3)> = faces.iter().map(foam_face).collect();
-    let mut est = [0.0; 3];
-    for (c, _) in &geo {
-        for m in 0..3 {
-            est[m] += c[m] / 6.0;
-        }
-    }
-    let (mut vol, mut sum) = (0.0, [0.0; 3]);
+    let est = geo.iter().map(|(c, _)| c).sum::<V3>() / 6.0;
+    let (mut vol, mut sum) = (0.0, V3::zeros());
     for (c, a) in &geo {
-        let v = dot3(*a, sub3(*c, est));
+        let v = a.dot(&(c - est));
         vol += v;
-        for m in 0..3 {
-            sum[m] += v * (0.75 * c[m] + 0.25 * est[m]);
-        }
+        sum += v * (0.75 * c + 0.25 * est);
     }
-    sum.map(|s| s / vol)
+    sum / vol
 }
 
 /// checkMesh's skewness of an internal face (primitiveMeshTools::faceSkewness): the distance
@@ -221,16 +187,16 @@ fn foam_cell_centre(faces: &[[V3; 4]; 6]) -> V3 {
 /// to the face's extent in that direction (at least 0.2 of the centres' distance).
 fn foam_skewness(face: &[V3; 4], own: V3, nei: V3) -> f64 {
     let (fc, fa) = foam_face(face);
-    let cpf = sub3(fc, own);
-    let d = sub3(nei, own);
-    let t = dot3(fa, cpf) / (dot3(fa, d) + 1e-300);
-    let sv = [cpf[0] - t * d[0], cpf[1] - t * d[1], cpf[2] - t * d[2]];
-    let sv_hat = sv.map(|v| v / (norm3(sv) + 1e-300));
+    let cpf = fc - own;
+    let d = nei - own;
+    let t = fa.dot(&cpf) / (fa.dot(&d) + 1e-300);
+    let sv = cpf - t * d;
+    let sv_hat = sv / (sv.norm() + 1e-300);
     let fd = face
         .iter()
-        .map(|p| dot3(sv_hat, sub3(*p, fc)).abs())
-        .fold(0.2 * norm3(d), f64::max);
-    norm3(sv) / fd
+        .map(|p| sv_hat.dot(&(p - fc)).abs())
+        .fold(0.2 * d.norm(), f64::max);
+    sv.norm() / fd
 }
 
 /// checkMesh's "highly skewed faces" (skewness > 4, issue #18/#19) were the faces in the wing
@@ -277,7 +243,7 @@ fn four_block_c_o_grid_has_no_highly_skewed_faces_at_the_tip() {
                             continue;
                         }
                         faces += 1;
-                        let s = foam_skewness(face, c, [c[0], c[1], -c[2]]);
+                        let s = foam_skewness(face, c, V3::new(c[0], c[1], -c[2]));
                         if s > worst {
                             worst = s;
                             at = format!("{name} cell ({i}, {j}, {k}) face {f}");
