@@ -273,3 +273,28 @@ fn cli_runs_the_co_case() {
     assert!(f("angle_max_deg") < 2.0, "{w}");
     assert!(f("ratio_min") > 0.8 && f("ratio_max") < 1.2, "{w}");
 }
+
+/// checkMesh's "highly skewed faces" (skewness > 4, issues #18/#19) on the shipped case, the
+/// block converted on its own (F6 a boundary patch), computed as checkMesh does over every
+/// face: there were 166, up to 43.2, all on F6 in the last k layer next to the tip's leading
+/// (i ≤ 3) and trailing (i ≥ 59) edges, where every wall line's last step over the cap was the
+/// same fraction of its length (3e-3 on the leading-edge line against the tip edge's first
+/// chordwise step of 6e-5 beyond the 180° edge E7; the thin sections' grid lines reaching F6
+/// nearly in its plane). With the cap's last φ step matched at the leading edge
+/// (`shape::tip_dphi`, 13° at the trailing edge): at most 3.53 (on F4; 2.60 on F6).
+#[test]
+fn shipped_co_block_has_no_highly_skewed_faces() {
+    let case = LoadedCase::read(&root().join("examples/wing_m6_co.toml")).unwrap();
+    let (_, block, rep) = generate_volume(&case, 0).unwrap();
+    let Block::Volume(g) = block else {
+        panic!("not a volume block")
+    };
+    assert_eq!(g.dims(), [65, 49, 33]);
+    assert_eq!(rep.quality.folded_cells, 0, "{}", rep.quality);
+    let (worst, at, above) = common::foam::block_skewness(&g, 4.0);
+    eprintln!("wing C-O 65 x 49 x 33: checkMesh skewness max {worst:.3} at {at}, {above} above 4");
+    assert!(
+        above == 0 && worst < 4.0,
+        "checkMesh skewness {worst} at {at}; {above} faces above 4 (highly skewed)"
+    );
+}

@@ -3,6 +3,7 @@
 //! 65 × 65 × 49), through the command line.
 
 mod common;
+use common::foam::{cell_faces, foam_cell_centre, foam_skewness, V3};
 use common::*;
 use ellipgrid::io::plot3d::read_plot3d;
 use ellipgrid::io::Block;
@@ -134,69 +135,6 @@ fn four_block_c_o_grid_is_fold_free_and_holds_the_wall_spacing() {
     }
     let conn = fs::read_to_string(d.path().join("m6.conn")).unwrap();
     assert!(conn.contains("wall") && conn.contains("farfield"), "{conn}");
-}
-
-type V3 = nalgebra::Vector3<f64>;
-
-/// OpenFOAM's centre and area vector of a face (primitiveMesh: triangles about the mean of
-/// its vertices, the centre weighted by their areas).
-fn foam_face(p: &[V3; 4]) -> (V3, V3) {
-    let mean = p.iter().sum::<V3>() / 4.0;
-    let (mut sum_n, mut sum_a, mut sum_ac) = (V3::zeros(), 0.0, V3::zeros());
-    for m in 0..4 {
-        let (a, b) = (p[m], p[(m + 1) % 4]);
-        let n = (b - a).cross(&(mean - a));
-        let area = n.norm();
-        sum_a += area;
-        sum_n += n;
-        sum_ac += area * (a + b + mean);
-    }
-    (sum_ac / (3.0 * sum_a), 0.5 * sum_n)
-}
-
-/// The six faces of cell (i, j, k), outward for a right-handed block, in the order
-/// i−, i+, j−, j+, k−, k+.
-fn cell_faces(g: &ellipgrid::Grid3, i: usize, j: usize, k: usize) -> [[V3; 4]; 6] {
-    let n = |a: usize, b: usize, c: usize| V3::from(g.point(i + a, j + b, k + c));
-    [
-        [n(0, 0, 0), n(0, 0, 1), n(0, 1, 1), n(0, 1, 0)],
-        [n(1, 0, 0), n(1, 1, 0), n(1, 1, 1), n(1, 0, 1)],
-        [n(0, 0, 0), n(1, 0, 0), n(1, 0, 1), n(0, 0, 1)],
-        [n(0, 1, 0), n(0, 1, 1), n(1, 1, 1), n(1, 1, 0)],
-        [n(0, 0, 0), n(0, 1, 0), n(1, 1, 0), n(1, 0, 0)],
-        [n(0, 0, 1), n(1, 0, 1), n(1, 1, 1), n(0, 1, 1)],
-    ]
-}
-
-/// OpenFOAM's cell centre: the volume-weighted centroids of the pyramids from the mean of
-/// the face centres to the faces.
-fn foam_cell_centre(faces: &[[V3; 4]; 6]) -> V3 {
-    let geo: Vec<(V3, V3)> = faces.iter().map(foam_face).collect();
-    let est = geo.iter().map(|(c, _)| c).sum::<V3>() / 6.0;
-    let (mut vol, mut sum) = (0.0, V3::zeros());
-    for (c, a) in &geo {
-        let v = a.dot(&(c - est));
-        vol += v;
-        sum += v * (0.75 * c + 0.25 * est);
-    }
-    sum / vol
-}
-
-/// checkMesh's skewness of an internal face (primitiveMeshTools::faceSkewness): the distance
-/// from the face centre to where the owner–neighbour centre line crosses the face, relative
-/// to the face's extent in that direction (at least 0.2 of the centres' distance).
-fn foam_skewness(face: &[V3; 4], own: V3, nei: V3) -> f64 {
-    let (fc, fa) = foam_face(face);
-    let cpf = fc - own;
-    let d = nei - own;
-    let t = fa.dot(&cpf) / (fa.dot(&d) + 1e-300);
-    let sv = cpf - t * d;
-    let sv_hat = sv / (sv.norm() + 1e-300);
-    let fd = face
-        .iter()
-        .map(|p| sv_hat.dot(&(p - fc)).abs())
-        .fold(0.2 * d.norm(), f64::max);
-    sv.norm() / fd
 }
 
 /// checkMesh's "highly skewed faces" (skewness > 4, issue #18/#19) were the faces in the wing

@@ -145,17 +145,49 @@ pub fn station(lambda: f64) -> Station {
     }
 }
 
-/// The reference span parameters λ_k: inboard y from 0 to y₀ (Vinokur, last step matched to the
-/// cap's), then the cap uniform in φ up to the tip edge.
-pub fn reference_lambdas(nk: usize) -> Vec<f64> {
+/// The span parameters λ_k of one wall k-line: inboard y from 0 to y₀ (Vinokur, last step
+/// matched to the cap's first), then the cap in φ from the uniform step π / (2 n_cap) at its
+/// start to `tip_dphi` at the tip edge (Vinokur). Inboard every line has the same λ_k (y =
+/// const); on the cap the lines differ by their last step ([`tip_dphi`]).
+pub fn span_lambdas(nk: usize, tip_dphi: f64) -> Vec<f64> {
     let y0 = (1.0 - CAP) * SEMI_SPAN;
     let n_cap = cap_intervals(nk);
     let n_in = nk - 1 - n_cap;
     let dphi = FRAC_PI_2 / n_cap as f64;
     let last = (CAP * SEMI_SPAN * dphi / y0).min(0.5 / n_in as f64);
     let mut out = vinokur(n_in + 1, None, Some(last)).expect("span distribution");
-    out.extend((1..=n_cap).map(|m| 1.0 + m as f64 / n_cap as f64));
+    let cap = vinokur(
+        n_cap + 1,
+        Some(dphi / FRAC_PI_2),
+        Some(tip_dphi / FRAC_PI_2),
+    )
+    .expect("cap distribution");
+    out.extend(cap[1..].iter().map(|s| 1.0 + s));
     out
+}
+
+/// The cap's last φ step at the trailing edge (deg). Matching the tip edge's last chordwise
+/// step there (1.8e-3, φ step 18°) leaves the thin sections next to the trailing edge reaching
+/// F6 too flat (checkMesh skewness 4.5 at i = 62); 7.5° (the uniform step) sheared the cells
+/// at the tip's trailing edge (growth ratio along k 5.8, faces up to 76° non-orthogonal); 11°
+/// and 15° measured as well (README, "Volume blocks").
+pub const TIP_DPHI_TE_DEG: f64 = 13.0;
+
+/// The cap's last φ step (rad) at the leading edge, from the steps on both sides of the 180°
+/// block edge E7 (F1 ahead of the leading edge, F6 beyond the tip, both in the wing plane): the
+/// cells along it are wedges spanning both faces, and `algebraic::flat_edge` maps them as
+/// w ↦ w², which wants the same step on both sides. On the leading-edge line (zero thickness,
+/// y = y₀ + Δ sin φ along the swept leading edge) the last spanwise step is
+/// Δ (1 − cos δφ) / cos Λ; it is made the tip edge's first chordwise step, chord(b) x₁ (x₁ the
+/// section's first node after the leading edge): 3.1°. The thin sections next to the leading
+/// edge then also reach the tip edge steeply (their last step Δ (1 − cos δφ) in y against
+/// t sin δφ in z) instead of nearly in the wing plane. With every wall line's last step the
+/// same fraction of its length (3e-3 at the leading edge, against 6e-5 beyond E7) checkMesh
+/// found 166 highly skewed faces on F6, skewness up to 43 (README, "Volume blocks").
+pub fn tip_dphi(x1: f64) -> f64 {
+    let step = chord(SEMI_SPAN) * x1;
+    let delta = CAP * SEMI_SPAN;
+    (1.0 - step * LE_SWEEP_DEG.to_radians().cos() / delta).acos()
 }
 
 /// Number of k intervals on the cap.
@@ -180,69 +212,6 @@ fn far_wrap(k: usize, nk: usize) -> f64 {
 fn wall_point(xz: [f64; 2], st: &Station) -> [f64; 3] {
     let c = chord(st.y);
     [x_le(st.y) + c * xz[0], st.y, c * st.tau * xz[1]]
-}
-
-/// Arclength fractions along the wall's k-line of section node `xz` at span parameters `lam`
-/// (dense polyline), and the inverse map fraction → λ.
-struct SpanLine {
-    lam: Vec<f64>,
-    frac: Vec<f64>,
-}
-
-impl SpanLine {
-    fn new(xz: [f64; 2]) -> Self {
-        let n = 4000;
-        let lam: Vec<f64> = (0..=n).map(|m| 2.0 * m as f64 / n as f64).collect();
-        let mut frac = vec![0.0];
-        for w in lam.windows(2) {
-            let (a, b) = (
-                wall_point(xz, &station(w[0])),
-                wall_point(xz, &station(w[1])),
-            );
-            frac.push(frac.last().unwrap() + dist(a, b));
-        }
-        let total = *frac.last().unwrap();
-        frac.iter_mut().for_each(|f| *f /= total);
-        SpanLine { lam, frac }
-    }
-    fn frac_at(&self, l: f64) -> f64 {
-        interp(&self.lam, &self.frac, l)
-    }
-    fn lambda_at(&self, f: f64) -> f64 {
-        interp(&self.frac, &self.lam, f)
-    }
-}
-
-/// Piecewise-linear interpolation of (xs, ys) at x (xs increasing).
-fn interp(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let m = xs.partition_point(|&v| v < x).clamp(1, xs.len() - 1);
-    let t = (x - xs[m - 1]) / (xs[m] - xs[m - 1]);
-    ys[m - 1] + t * (ys[m] - ys[m - 1])
-}
-
-/// Span parameters λ(i, k) of the wall nodes: the arclength fractions along every k-line of
-/// the wall are those of the reference distribution on the thickest section's line, so that
-/// the wall face follows the bilinear parameters of its edges (the solver's control functions
-/// come from them; a cap clustered differently from the leading and trailing edges skews the
-/// grid lines leaving the cap).
-fn span_lambdas(sec: &[([f64; 2], [f64; 2])], nk: usize) -> Vec<Vec<f64>> {
-    let thick = (0..sec.len())
-        .max_by(|&a, &b| sec[a].0[1].total_cmp(&sec[b].0[1]))
-        .expect("nodes");
-    let reference = SpanLine::new(sec[thick].0);
-    let fr: Vec<f64> = reference_lambdas(nk)
-        .iter()
-        .map(|&l| reference.frac_at(l))
-        .collect();
-    sec.iter()
-        .map(|(xz, _)| {
-            let line = SpanLine::new(*xz);
-            let mut l: Vec<f64> = fr.iter().map(|&f| line.lambda_at(f)).collect();
-            l[0] = 0.0;
-            l[nk - 1] = 2.0;
-            l
-        })
-        .collect()
 }
 
 /// In-plane swing of the grid lines leaving the leading edge (rad) at station `st`, k: 0 at the
@@ -308,7 +277,13 @@ pub fn algebraic_block(ni: usize, nj: usize, nk: usize) -> Grid3 {
             std::f64::consts::PI + (th_te - std::f64::consts::PI) * g
         })
         .collect();
-    let lams = span_lambdas(&sec, nk);
+    // The cap's last φ step of each wall line: matched to the step beyond E7 at the leading
+    // edge, `TIP_DPHI_TE_DEG` at the trailing edge, linear in x/c between (`tip_dphi`).
+    let (le, te) = (tip_dphi(sec[1].0[0]), TIP_DPHI_TE_DEG.to_radians());
+    let lams: Vec<Vec<f64>> = sec
+        .iter()
+        .map(|([x, _], _)| span_lambdas(nk, le + (te - le) * x))
+        .collect();
     let mut g = Grid3::zeros(ni, nj, nk);
     for (i, lam) in lams.iter().enumerate() {
         for (k, &l) in lam.iter().enumerate() {

@@ -1,6 +1,8 @@
 //! Shared helpers of the integration tests: running the binary, temporary case files.
 #![allow(dead_code)]
 
+pub mod foam;
+
 use ellipgrid::grid::Grid2;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
