@@ -14,7 +14,10 @@
 //! leaving along a direction D with the prescribed first-cell height, to its point F on the far
 //! dome (a circle of 3.3 local chords about the local 0.3-chord point, swung about the span by
 //! the wrap angle): the faces are the algebraic block's boundary, the interior is left to the
-//! elliptic solver.
+//! elliptic solver. Along the span the wall's k-lines are y = const inboard and clustered in φ
+//! towards the tip edge on the cap ([`span_lambdas`], [`tip_dphi`]): the cells along the flat
+//! edge E7 and the thin sections next to the leading and trailing edges want a short last step
+//! there (checkMesh's highly skewed faces, README "Volume blocks").
 #![allow(dead_code)]
 
 use ellipgrid::{Grid2, Grid3};
