@@ -45,7 +45,7 @@ impl Blend {
 
     /// B1(u) (B0 = 1 − B1) and its derivative.
     #[inline]
-    fn b1(self, u: f64) -> (f64, f64) {
+    pub fn b1(self, u: f64) -> (f64, f64) {
         match self {
             Blend::Linear => (u, 1.0),
             Blend::First => (u * u, 2.0 * u),

@@ -116,7 +116,7 @@ type HalfFace<'a, const D: usize> = (&'a [f64; D], &'a [f64; D], usize, usize, &
 /// half-face fluxes) as nine coefficients over the neighbours of node n (slot order of
 /// [`crate::solve::stencil9::dir`]). Boundary sides carry no flux (the Neumann condition); Dirichlet
 /// rows are discarded later. Errors name the first degenerate cell.
-fn flux_rows<const D: usize>(g: &Grid2<D>, place: &str) -> Result<Vec<[f64; 9]>> {
+pub(crate) fn flux_rows<const D: usize>(g: &Grid2<D>, place: &str) -> Result<Vec<[f64; 9]>> {
     let (ni, nj) = (g.ni(), g.nj());
     let mut rows = vec![[0.0; 9]; ni * nj];
     // Cell corners a, b, c, d at offsets (0,0), (1,0), (0,1), (1,1).

@@ -29,6 +29,7 @@ pub mod newton;
 pub mod orthogonal;
 pub mod orthogonal3d;
 pub mod periodic;
+pub mod periodic_orthogonal;
 pub mod picard;
 pub mod poisson2d;
 pub mod poisson3d;

@@ -130,7 +130,7 @@ pub const MAX_DISORDER: f64 = 1e-6;
 /// Runs longer than an eighth of the edge (at least 3 nodes), and nodes out of order by more
 /// than [`MAX_DISORDER`] of the range, are refused: `Err(k)` names the node pair (k, k + 1)
 /// where such a run starts (as does a last value not above the first).
-fn monotone(v: &mut [f64], arc: &[f64]) -> std::result::Result<(), usize> {
+pub(crate) fn monotone(v: &mut [f64], arc: &[f64]) -> std::result::Result<(), usize> {
     let n = v.len();
     let (first, last) = (v[0], v[n - 1]);
     if last.partial_cmp(&first) != Some(std::cmp::Ordering::Greater) {

@@ -14,7 +14,8 @@
 //! [`crate::elliptic::newton`], the Jacobian applied by a forward difference of the residual.
 //! Each step's linear systems are solved by faer's sparse LU ([`DirectLuPeriodic`]) whatever
 //! `[solver] linear` says: the black-box multigrid is not periodic. Orthogonality (Section
-//! 2.4) is refused for periodic blocks, nested iteration is not used.
+//! 2.4) at the ring's sides is [`crate::elliptic::periodic_orthogonal`]; nested iteration is
+//! not used.
 
 use crate::algebraic::control2d::Control2;
 use crate::algebraic::periodic::{close_seam, periodic_control_for, periodic_start};
@@ -320,7 +321,8 @@ pub fn solve<const D: usize>(
 /// Grids one periodic block (E1 = E2 the floating cut): the start grid between E3 and E4
 /// ([`periodic_start`]), or `start` (its E3 and E4 rows replaced by `b`'s), control functions
 /// of `kind` from the η boundaries ([`periodic_control_for`]), Picard iteration of [24].
-/// `orthogonal` (E1, E2, E3, E4) must be all false.
+/// `orthogonal` (E1, E2, E3, E4) must be all false: orthogonality is
+/// [`crate::elliptic::periodic_orthogonal::grid_block`], which calls this for its step 1.
 ///
 /// # Errors
 /// Orthogonality asked for, E3 or E4 not closed (its first and last nodes apart), and the

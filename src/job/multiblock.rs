@@ -9,7 +9,7 @@ use crate::algebraic::ControlKind;
 use crate::case::{BlockKind, LoadedCase};
 use crate::elliptic::orthogonal::grid_block_walls;
 use crate::elliptic::orthogonal::{grid_block_sides, Sides};
-use crate::elliptic::periodic;
+use crate::elliptic::periodic_orthogonal;
 use crate::elliptic::picard::PicardInfo;
 use crate::elliptic::wall2d::{
     hold_wall_spacing_periodic, wall_spacing_on, wall_spacing_periodic, wall_spacings, WallSide,
@@ -326,11 +326,12 @@ fn solve_group<const D: usize>(
                 "wall spacings need the algebraic control functions (control = \"algebraic\")",
             ));
         }
-        let r = periodic::grid_block(bnd, None, g.orthogonal, ctrl, params, place)?;
+        let (r, pg) =
+            periodic_orthogonal::grid_block(bnd, None, g.orthogonal, ctrl, params, place)?;
         if walls.is_empty() {
             return Ok(r);
         }
-        let (grid, held) = hold_wall_spacing_periodic(r.grid, bnd, &walls, params, place)?;
+        let (grid, held) = hold_wall_spacing_periodic(r.grid, pg, bnd, &walls, params, place)?;
         let mut picard = r.picard;
         if let Some(h) = held {
             picard.append(h);

@@ -10,7 +10,7 @@
 
 use super::targets::blend_targets;
 use super::{column_distances, dist, passes, Columns, WallSide, WallSpacing2};
-use crate::algebraic::periodic::{periodic_control, periodic_param};
+use crate::algebraic::periodic::periodic_control;
 use crate::algebraic::transform::ParamGrid;
 use crate::elliptic::periodic;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
@@ -20,7 +20,9 @@ use crate::grid::{Edge, Grid2};
 use crate::{Error, Result};
 
 /// Holds the first spacing off the wall sides `sides` (E3 and/or E4, whole sides) of the
-/// periodic grid `x` of the block `b` (module docs). Returns the corrected grid and the
+/// periodic grid `x` of the block `b`, solved with the control functions of `pg` (the
+/// periodic straight-line parameters, or the blend of the orthogonality step) (module docs).
+/// Returns the corrected grid and the
 /// Picard history of its solves (None if no pass was needed).
 ///
 /// # Errors
@@ -28,6 +30,7 @@ use crate::{Error, Result};
 /// 4 × 3 nodes; the errors of the final solve.
 pub fn hold_wall_spacing_periodic<const D: usize>(
     x: Grid2<D>,
+    pg: ParamGrid,
     b: &Boundary2<D>,
     sides: &[WallSide],
     params: &PicardParams,
@@ -77,7 +80,7 @@ pub fn hold_wall_spacing_periodic<const D: usize>(
         let ctrl = periodic_control(pg);
         periodic::solve(x, &ctrl, p, place).map(|i| (i, None))
     };
-    passes(x, periodic_param(b), remap, solve, params)
+    passes(x, pg, remap, solve, params)
 }
 
 /// Distances of the cut's given nodes from its end on wall `edge` (E3: j = 0, E4: j = M),

@@ -319,6 +319,10 @@ fn ellipse_ring(ni: usize, nj: usize, h: f64) -> Boundary2<2> {
     block(cut.clone(), cut, ring(1.0, 0.3), ring(5.0, 5.0))
 }
 
+fn pg(b: &Boundary2<2>) -> crate::algebraic::transform::ParamGrid {
+    crate::algebraic::periodic::periodic_param(b)
+}
+
 #[test]
 fn a_periodic_ring_holds_the_cuts_first_spacing_all_round() {
     // Without the passes the first spacing follows the ellipse's curvature (0.14 … 0.49 of the
@@ -340,9 +344,15 @@ fn a_periodic_ring_holds_the_cuts_first_spacing_all_round() {
         before.ratio_min < 0.8 || before.ratio_max > 1.25,
         "{before:?}"
     );
-    let (g, info) =
-        hold_wall_spacing_periodic(r.grid, &b, &[WallSide::whole(Edge::E3)], &params, "ring")
-            .unwrap();
+    let (g, info) = hold_wall_spacing_periodic(
+        r.grid,
+        pg(&b),
+        &b,
+        &[WallSide::whole(Edge::E3)],
+        &params,
+        "ring",
+    )
+    .unwrap();
     let info = info.expect("passes ran");
     assert!(info.converged, "{} steps", info.steps);
     let after = wall_spacing_periodic(&g, &b, Edge::E3);
@@ -356,6 +366,7 @@ fn a_periodic_ring_holds_the_cuts_first_spacing_all_round() {
     }
     assert_eq!(crate::quality::quality_any(&g).folded_cells, 0);
     // a wall on the cut is refused
-    let e = hold_wall_spacing_periodic(g, &b, &[WallSide::whole(Edge::E1)], &params, "ring");
+    let e =
+        hold_wall_spacing_periodic(g, pg(&b), &b, &[WallSide::whole(Edge::E1)], &params, "ring");
     assert!(e.unwrap_err().to_string().contains("E1"));
 }

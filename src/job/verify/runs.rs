@@ -11,7 +11,7 @@ use crate::case::{BlockKind, LoadedCase};
 use crate::elliptic::orthogonal::grid_block_walls;
 use crate::elliptic::orthogonal::{grid_block_sides, Sides};
 use crate::elliptic::orthogonal3d::grid_volume_corrected;
-use crate::elliptic::periodic;
+use crate::elliptic::periodic_orthogonal;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::volume::grid_volume;
 use crate::elliptic::wall::LOOSE_TOLERANCE;
@@ -161,8 +161,15 @@ fn start_2d<const D: usize>(
         close_seam(&mut start);
         let (cells, bad) = ((start.ni() - 1) * (start.nj() - 1), folded(&start));
         let orth = sides.orthogonal;
-        let r = periodic::grid_block(b, Some(start), orth, spec.control, &spec.picard, place);
-        return Ok((cells, bad, solved(r.map(|r| (r.grid, r.picard)))?));
+        let r = periodic_orthogonal::grid_block(
+            b,
+            Some(start),
+            orth,
+            spec.control,
+            &spec.picard,
+            place,
+        );
+        return Ok((cells, bad, solved(r.map(|(r, _)| (r.grid, r.picard)))?));
     }
     let start = scrambled(&transfinite(b), seed);
     let cells = (start.ni() - 1) * (start.nj() - 1);
