@@ -123,12 +123,12 @@ fn remap_ring<const D: usize>(
         let mut v: Vec<f64> = idx.iter().map(|&p| cols.param(pg, p)).collect();
         let k = last + 1;
         err = err.max(remap_column(&mut v[..k], &d[..k], &goals[c][..k]));
-        for (&p, y) in idx.iter().zip(&v) {
+        for (j, (&p, y)) in idx.iter().zip(&v).enumerate() {
             cols.set_param(pg, p, *y);
             // the seam's copy (column N) carries column 0's parameters
             if c == 0 {
-                let (_, j) = (p % x.ni(), p / x.ni());
-                cols.set_param(pg, x.idx(nc, j), *y);
+                let (i, jj) = cols.node(nc, j);
+                cols.set_param(pg, x.idx(i, jj), *y);
             }
         }
     }
