@@ -89,7 +89,7 @@ pub fn grid_block<const D: usize>(
 /// Returns s at every node (column N holds column 0's s + 1).
 ///
 /// # Errors
-/// A degenerate cell ([`flux_rows`]), a failed LU.
+/// A degenerate cell (zero area), a failed LU.
 pub fn harmonic_s<const D: usize>(
     g: &Grid2<D>,
     neumann: [bool; 2],
