@@ -15,6 +15,7 @@
 //! and about a NACA0012 with a sharp trailing edge the grid then folds at the trailing edge
 //! (cells 0.003 along the wall, 0.05 across it: Picard stalls and diverges, measured).
 
+use crate::algebraic::blend::Blend;
 use crate::algebraic::control2d::Control2;
 use crate::algebraic::transform::ParamGrid;
 use crate::algebraic::{ControlKind, Controls};
@@ -27,20 +28,31 @@ use rayon::prelude::*;
 /// cut E1 (= E2), and s interpolated linearly in t between the normalized arclengths of E3
 /// and E4.
 pub fn periodic_param<const D: usize>(b: &Boundary2<D>) -> ParamGrid {
-    let (ni, nj) = (b.ni(), b.nj());
-    let s3 = normalized_arclength(b.edge(Edge::E3));
-    let s4 = normalized_arclength(b.edge(Edge::E4));
-    let tc = normalized_arclength(b.edge(Edge::E1));
+    periodic_blend(
+        &normalized_arclength(b.edge(Edge::E3)),
+        &normalized_arclength(b.edge(Edge::E4)),
+        &normalized_arclength(b.edge(Edge::E1)),
+        Blend::Linear,
+    )
+}
+
+/// The (s, t) grid of a periodic block from the edge functions `s3`, `s4` of E3 and E4 and
+/// the cut's `t_cut`: t = t_cut(η) on every ξ-line and s = s3(ξ) B0(t) + s4(ξ) B1(t), eqs.
+/// [47]–[49] with t independent of s (`bl` linear: the straight-line map; zero slope at an
+/// orthogonal side: Section 2.4, [`crate::elliptic::periodic_orthogonal`]).
+pub fn periodic_blend(s3: &[f64], s4: &[f64], t_cut: &[f64], bl: Blend) -> ParamGrid {
+    let (ni, nj) = (s3.len(), t_cut.len());
     let mut s = Vec::with_capacity(ni * nj);
     let mut t = Vec::with_capacity(ni * nj);
-    for (j, &tv) in tc.iter().enumerate() {
+    for (j, &tv) in t_cut.iter().enumerate() {
+        let w = bl.b1(tv).0;
         for i in 0..ni {
             s.push(if j == 0 {
                 s3[i]
             } else if j + 1 == nj {
                 s4[i]
             } else {
-                s3[i] * (1.0 - tv) + s4[i] * tv
+                s3[i] * (1.0 - w) + s4[i] * w
             });
             t.push(tv);
         }

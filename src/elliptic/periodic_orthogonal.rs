@@ -9,8 +9,8 @@
 //!    orthogonal sides, the normalized arclength at the others. Its values on E3 and E4 are the
 //!    new edge functions. There is no t problem: t = t_cut(η), the cut's distribution, on
 //!    every ξ-line, as in [`crate::algebraic::periodic`].
-//! 3. Blend s in t with zero slope at the orthogonal sides ([`Blend`], eqs. [47]–[49] with
-//!    t independent of s, so each node is explicit), take the control functions [19] of the
+//! 3. Blend s in t with zero slope at the orthogonal sides ([`periodic_blend`], eqs.
+//!    [47]–[49] with t independent of s, so each node is explicit), take the control functions [19] of the
 //!    blend ([`periodic_control`]) and solve [24] again from the grid of step 1.
 //!
 //! With both sides orthogonal s is fixed up to a constant: the wall's seam node is held at 0.
@@ -18,7 +18,7 @@
 //! refused.
 
 use crate::algebraic::blend::Blend;
-use crate::algebraic::periodic::{periodic_control, periodic_param};
+use crate::algebraic::periodic::{periodic_blend, periodic_control, periodic_param};
 use crate::algebraic::transform::ParamGrid;
 use crate::algebraic::ControlKind;
 use crate::elliptic::harmonic::flux_rows;
@@ -73,7 +73,8 @@ pub fn grid_block<const D: usize>(
     }
     let s = harmonic_s(&step1.grid, sides, place)?;
     let (s3, s4) = ring_edge_functions(&step1.grid, &s, place)?;
-    let pg = blend(&s3, &s4, &normalized_arclength(b.edge(Edge::E1)), sides);
+    let bl = Blend::from_edges(sides[0], sides[1]);
+    let pg = periodic_blend(&s3, &s4, &normalized_arclength(b.edge(Edge::E1)), bl);
     let (mut grid, mut picard) = (step1.grid, step1.picard);
     picard.append(periodic::solve(
         &mut grid,
@@ -198,29 +199,6 @@ fn ring_edge_functions<const D: usize>(
         Ok(v)
     };
     Ok((side(Edge::E3, 0)?, side(Edge::E4, nj - 1)?))
-}
-
-/// Step 3's parameters: t = `t_cut`(η) on every ξ-line and s = s_E3(ξ) B0(t) + s_E4(ξ) B1(t)
-/// with the blend of zero slope at the orthogonal sides `orth` (E3, E4), eqs. [47]–[49].
-pub fn blend(s3: &[f64], s4: &[f64], t_cut: &[f64], orth: [bool; 2]) -> ParamGrid {
-    let (ni, nj) = (s3.len(), t_cut.len());
-    let bl = Blend::from_edges(orth[0], orth[1]);
-    let mut s = Vec::with_capacity(ni * nj);
-    let mut t = Vec::with_capacity(ni * nj);
-    for (j, &tv) in t_cut.iter().enumerate() {
-        let w = bl.b1(tv).0;
-        for i in 0..ni {
-            s.push(if j == 0 {
-                s3[i]
-            } else if j + 1 == nj {
-                s4[i]
-            } else {
-                s3[i] * (1.0 - w) + s4[i] * w
-            });
-            t.push(tv);
-        }
-    }
-    ParamGrid::from_parts(ni, nj, s, t)
 }
 
 #[cfg(test)]
