@@ -149,6 +149,59 @@ pub fn periodic_control_for<const D: usize>(b: &Boundary2<D>, kind: ControlKind)
     }
 }
 
+/// Rings for the tests of periodic blocks (here, in `elliptic::periodic_orthogonal` and in
+/// `elliptic::wall2d`).
+#[cfg(test)]
+pub(crate) mod rings {
+    use crate::grid::boundary::Boundary2;
+
+    /// `n` nodes from 0 to `len`, geometric with first step `h`.
+    pub(crate) fn geometric(n: usize, len: f64, h: f64) -> Vec<f64> {
+        let sum = |r: f64| (0..n - 1).map(|k| h * r.powi(k as i32)).sum::<f64>();
+        let (mut lo, mut hi) = (1.0, 2.0);
+        while sum(hi) < len {
+            hi *= 2.0;
+        }
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if sum(mid) < len {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let r = 0.5 * (lo + hi);
+        let mut out = vec![0.0];
+        for k in 0..n - 1 {
+            out.push(out[k] + h * r.powi(k as i32));
+        }
+        let last = out[n - 1];
+        out.iter().map(|x| x * len / last).collect()
+    }
+
+    /// `ni` nodes round the ellipse x²/a² + y²/b² = 1 from (a, 0), uniform in its angle
+    /// parameter, node N = node 0 (a circle for a = b).
+    pub(crate) fn ellipse(ni: usize, a: f64, b: f64) -> Vec<[f64; 2]> {
+        (0..ni)
+            .map(|i| {
+                let t = std::f64::consts::TAU * (i % (ni - 1)) as f64 / (ni - 1) as f64;
+                [a * t.cos(), b * t.sin()]
+            })
+            .collect()
+    }
+
+    /// A ring between an ellipse (semi-axes 1, 0.3) and the circle of radius 5, periodic in
+    /// i (E1 = E2 the cut along +x), `ni` × `nj` nodes, the cut geometric from `h`.
+    pub(crate) fn ellipse_ring(ni: usize, nj: usize, h: f64) -> Boundary2<2> {
+        let cut: Vec<[f64; 2]> = geometric(nj, 4.0, h)
+            .iter()
+            .map(|&r| [1.0 + r, 0.0])
+            .collect();
+        let (e3, e4) = (ellipse(ni, 1.0, 0.3), ellipse(ni, 5.0, 5.0));
+        Boundary2::new([cut.clone(), cut, e3, e4], "ring").unwrap()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -158,14 +211,7 @@ mod tests {
         // Two concentric circles with uniform nodes and a uniform cut: s = ξ, t = η, so every
         // control function vanishes, also at the seam (where s jumps by 1).
         let (ni, nj) = (17, 6);
-        let circle = |r: f64| -> Vec<[f64; 2]> {
-            (0..ni)
-                .map(|i| {
-                    let a = std::f64::consts::TAU * (i % (ni - 1)) as f64 / (ni - 1) as f64;
-                    [r * a.cos(), r * a.sin()]
-                })
-                .collect()
-        };
+        let circle = |r: f64| rings::ellipse(ni, r, r);
         let cut: Vec<[f64; 2]> = (0..nj)
             .map(|j| [1.0 + 2.0 * j as f64 / (nj - 1) as f64, 0.0])
             .collect();

@@ -1,42 +1,8 @@
 use super::*;
+use crate::algebraic::periodic::rings::{ellipse, ellipse_ring};
 use crate::quality::quality_any;
 
-/// A ring of `ni` × `nj` nodes: E3 the ellipse x²/a² + y²/b² = 1 (uniform in its angle
-/// parameter, node N = node 0), E4 the circle of radius 5, the cut along y = 0 from (a, 0)
-/// with geometric spacing from `h`.
-fn ellipse_ring(ni: usize, nj: usize, a: f64, b: f64, h: f64) -> Boundary2<2> {
-    let ring = |a: f64, b: f64| -> Vec<[f64; 2]> {
-        (0..ni)
-            .map(|i| {
-                let t = std::f64::consts::TAU * (i % (ni - 1)) as f64 / (ni - 1) as f64;
-                [a * t.cos(), b * t.sin()]
-            })
-            .collect()
-    };
-    let len = 5.0 - a;
-    // geometric ratio r with h (r^(n-1) - 1) / (r - 1) = len
-    let n = nj - 1;
-    let sum = |r: f64| h * (r.powi(n as i32) - 1.0) / (r - 1.0);
-    let (mut lo, mut hi) = (1.0 + 1e-12, 2.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if sum(mid) < len {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let mut cut = vec![[a, 0.0]];
-    let mut x = a;
-    for k in 0..n {
-        x += h * lo.powi(k as i32);
-        cut.push([x, 0.0]);
-    }
-    cut[n] = [5.0, 0.0];
-    Boundary2::new([cut.clone(), cut, ring(a, b), ring(5.0, 5.0)], "ring").unwrap()
-}
-
-/// The ring of [`ellipse_ring`] numbered from node `k` of the old numbering on (node 0 at the
+/// The ring `b` numbered from node `k` of the old numbering on (node 0 at the
 /// angle 2πk/N), its cut through the new node 0 with the same distribution.
 fn rotated(b: &Boundary2<2>, k: usize) -> Boundary2<2> {
     let turn = |p: Vec<[f64; 2]>| -> Vec<[f64; 2]> {
@@ -79,14 +45,7 @@ fn uniform_circles_give_the_angle_itself_for_every_condition() {
     // the sides' conditions (each node's stencil is mirror-symmetric in i), and the grid of
     // the orthogonality step is the polar grid (rays at uniform angles).
     let (ni, nj) = (33, 9);
-    let circle = |r: f64| -> Vec<[f64; 2]> {
-        (0..ni)
-            .map(|i| {
-                let a = std::f64::consts::TAU * (i % (ni - 1)) as f64 / (ni - 1) as f64;
-                [r * a.cos(), r * a.sin()]
-            })
-            .collect()
-    };
+    let circle = |r: f64| ellipse(ni, r, r);
     let cut: Vec<[f64; 2]> = (0..nj)
         .map(|j| [1.0 + 2.0 * (j as f64 / (nj - 1) as f64).powf(1.5), 0.0])
         .collect();
@@ -123,7 +82,7 @@ fn an_ellipse_ring_meets_its_wall_at_right_angles_ever_closer_under_refinement()
     // falls ~5× per halving, fold-free.
     let mut worst = Vec::new();
     for (ni, nj) in [(49, 21), (97, 41), (193, 81)] {
-        let b = ellipse_ring(ni, nj, 1.0, 0.3, 8e-2 / (nj - 1) as f64);
+        let b = ellipse_ring(ni, nj, 8e-2 / (nj - 1) as f64);
         let (_, plain) = solve(&b, [false; 4]);
         let (g, q) = solve(&b, E3);
         assert!(
@@ -148,7 +107,7 @@ fn the_seam_is_not_a_boundary_numbering_the_ring_from_elsewhere_gives_the_same_g
     // The orthogonality step solved on the ring numbered from a quarter turn on (seam at the
     // ellipse's minor axis instead of its major one): the same nodes, relabelled.
     let (ni, nj) = (49, 21);
-    let b = ellipse_ring(ni, nj, 1.0, 0.3, 4e-3);
+    let b = ellipse_ring(ni, nj, 4e-3);
     let k = (ni - 1) / 4;
     let turned = rotated(&b, k);
     for orth in [E3, [false, false, true, true]] {
@@ -167,7 +126,7 @@ fn the_seam_is_not_a_boundary_numbering_the_ring_from_elsewhere_gives_the_same_g
 
 #[test]
 fn orthogonality_on_the_cut_or_with_laplace_is_refused() {
-    let b = ellipse_ring(25, 11, 1.0, 0.3, 1e-2);
+    let b = ellipse_ring(25, 11, 1e-2);
     let p = PicardParams::default();
     let on_cut = grid_block(
         &b,

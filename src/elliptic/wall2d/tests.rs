@@ -1,32 +1,9 @@
 use super::*;
+use crate::algebraic::periodic::rings::{ellipse_ring, geometric};
 use crate::algebraic::ControlKind;
 use crate::elliptic::orthogonal::{grid_block_sides, Sides};
 use crate::grid::boundary::Boundary2;
 use crate::solve::direct::DirectLu;
-
-/// `n` nodes from 0 to `len`, geometric with first step `h`.
-fn geometric(n: usize, len: f64, h: f64) -> Vec<f64> {
-    let sum = |r: f64| (0..n - 1).map(|k| h * r.powi(k as i32)).sum::<f64>();
-    let (mut lo, mut hi) = (1.0, 2.0);
-    while sum(hi) < len {
-        hi *= 2.0;
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if sum(mid) < len {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let r = 0.5 * (lo + hi);
-    let mut out = vec![0.0];
-    for k in 0..n - 1 {
-        out.push(out[k] + h * r.powi(k as i32));
-    }
-    let last = out[n - 1];
-    out.iter().map(|x| x * len / last).collect()
-}
 
 /// A block from its four sides (E1, E2 from E3 to E4; E3, E4 from E1 to E2).
 fn block(
@@ -299,24 +276,6 @@ fn opposite_walls_each_hold_their_spacing() {
         let h = wall_spacing(&held, e);
         assert!(h.ratio_min > 0.99 && h.ratio_max < 1.01, "held {e}: {h:?}");
     }
-}
-
-/// A ring between an ellipse (semi-axes 1, 0.3) and the circle of radius 5, periodic in i
-/// (E1 = E2 the cut along +x), `ni` × `nj` nodes, the cut geometric from `h`.
-fn ellipse_ring(ni: usize, nj: usize, h: f64) -> Boundary2<2> {
-    let ring = |a: f64, b: f64| -> Vec<[f64; 2]> {
-        (0..ni)
-            .map(|i| {
-                let t = std::f64::consts::TAU * (i % (ni - 1)) as f64 / (ni - 1) as f64;
-                [a * t.cos(), b * t.sin()]
-            })
-            .collect()
-    };
-    let cut: Vec<[f64; 2]> = geometric(nj, 4.0, h)
-        .iter()
-        .map(|&r| [1.0 + r, 0.0])
-        .collect();
-    block(cut.clone(), cut, ring(1.0, 0.3), ring(5.0, 5.0))
 }
 
 fn pg(b: &Boundary2<2>) -> crate::algebraic::transform::ParamGrid {
