@@ -20,7 +20,7 @@ use super::{quietly, Route, StepFace};
 use crate::case::DistributionSpec;
 use crate::elliptic::picard::PicardInfo;
 use crate::grid::Edge;
-use crate::quality;
+use crate::quality::{self, QualityReport};
 use crate::solve::LinearSolver;
 use crate::surface::face::grid_face_composite_refined;
 use crate::surface::pipeline::SurfaceResult;
@@ -56,6 +56,28 @@ pub struct FaceGrid {
     pub gap: f64,
     /// The Section 2 solve of the (u, v) grid (none for an untrimmed patch).
     pub uv_picard: Option<PicardInfo>,
+    /// The quality report of `result.grid` ([`quality::quality_surface`]), computed once
+    /// here: the retry test of [`grid_face`] and the callers' reports share it.
+    pub quality: QualityReport,
+}
+
+impl FaceGrid {
+    /// A gridded face and its quality report.
+    pub(super) fn new(
+        result: SurfaceResult,
+        corner_angles: Vec<f64>,
+        gap: f64,
+        uv_picard: Option<PicardInfo>,
+    ) -> Self {
+        let quality = quality::quality_surface(&result.grid);
+        FaceGrid {
+            result,
+            corner_angles,
+            gap,
+            uv_picard,
+            quality,
+        }
+    }
 }
 
 /// The grid of a face: `ni` nodes along its first and third sides, `nj` along the second and
@@ -94,12 +116,7 @@ pub fn grid_face(
                 .as_ref()
                 .expect("a patch has a B-spline surface");
             let result = super::grid_patch(s, (ni, nj), dist_i, dist_j, solver, place)?;
-            Ok(FaceGrid {
-                result,
-                corner_angles: Vec::new(),
-                gap: 0.0,
-                uv_picard: None,
-            })
+            Ok(FaceGrid::new(result, Vec::new(), 0.0, None))
         }
         Route::Trimmed(_) => trimmed(face, (ni, nj), [dist_i, dist_j], solver, place),
     }
@@ -150,7 +167,7 @@ fn trimmed(
         let retry = match &r {
             Err(Error::Folded { place: p, .. }) => p.ends_with("(u, v) grid"),
             Err(_) => false,
-            Ok(g) => quality::quality_surface(&g.result.grid).is_folded(),
+            Ok(g) => g.quality.is_folded(),
         };
         match best {
             None if !retry => return r,
@@ -227,12 +244,12 @@ fn attempt(
             "truck failed to evaluate the surface inside the face",
         ))
     })?;
-    Ok(FaceGrid {
-        result: r.result,
-        corner_angles: b.angles.to_vec(),
-        gap: b.gap,
-        uv_picard: r.uv_picard,
-    })
+    Ok(FaceGrid::new(
+        r.result,
+        b.angles.to_vec(),
+        b.gap,
+        r.uv_picard,
+    ))
 }
 
 /// The four block edges E1..E4 of a face: 3D points on the CAD edges, their (u, v), and
