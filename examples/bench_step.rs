@@ -18,8 +18,6 @@
 
 use ellipgrid::cad::{grid_face_blocks, read_step_faces, Route};
 use ellipgrid::case::DistributionSpec;
-use ellipgrid::quality;
-use ellipgrid::quality::quality3d::AnyQuality;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -69,10 +67,7 @@ fn grid_file(path: PathBuf, n: usize, linear: &str) -> Result<Faces, String> {
                     let mut solver = ellipgrid::solve::select::by_name(linear).unwrap();
                     match grid_face_blocks(f, (n, n), &d, &d, solver.as_mut(), "") {
                         Ok(gs) => {
-                            let folded = gs.iter().any(|g| {
-                                AnyQuality::from(quality::quality_surface(&g.result.grid))
-                                    .is_folded()
-                            });
+                            let folded = gs.iter().any(|g| g.quality.is_folded());
                             if folded {
                                 Outcome::Folded
                             } else {

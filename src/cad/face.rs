@@ -20,7 +20,7 @@ use super::{quietly, Route, StepFace};
 use crate::case::DistributionSpec;
 use crate::elliptic::picard::PicardInfo;
 use crate::grid::Edge;
-use crate::quality;
+use crate::quality::{self, QualityReport};
 use crate::solve::LinearSolver;
 use crate::surface::face::grid_face_composite_refined;
 use crate::surface::pipeline::SurfaceResult;
@@ -56,6 +56,28 @@ pub struct FaceGrid {
     pub gap: f64,
     /// The Section 2 solve of the (u, v) grid (none for an untrimmed patch).
     pub uv_picard: Option<PicardInfo>,
+    /// The quality report of `result.grid` ([`quality::quality_surface`]), computed once
+    /// here: the retry test of [`grid_face`] and the callers' reports share it.
+    pub quality: QualityReport,
+}
+
+impl FaceGrid {
+    /// A gridded face and its quality report.
+    pub(super) fn new(
+        result: SurfaceResult,
+        corner_angles: Vec<f64>,
+        gap: f64,
+        uv_picard: Option<PicardInfo>,
+    ) -> Self {
+        let quality = quality::quality_surface(&result.grid);
+        FaceGrid {
+            result,
+            corner_angles,
+            gap,
+            uv_picard,
+            quality,
+        }
+    }
 }
 
 /// The grid of a face: `ni` nodes along its first and third sides, `nj` along the second and
@@ -94,12 +116,7 @@ pub fn grid_face(
                 .as_ref()
                 .expect("a patch has a B-spline surface");
             let result = super::grid_patch(s, (ni, nj), dist_i, dist_j, solver, place)?;
-            Ok(FaceGrid {
-                result,
-                corner_angles: Vec::new(),
-                gap: 0.0,
-                uv_picard: None,
-            })
+            Ok(FaceGrid::new(result, Vec::new(), 0.0, None))
         }
         Route::Trimmed(_) => trimmed(face, (ni, nj), [dist_i, dist_j], solver, place),
     }
@@ -135,22 +152,44 @@ fn trimmed(
     // the corpus's slowest files several times slower.)
     // A refined try that fails otherwise reports the first try's fold; a folded grid is
     // preferred to a folded (u, v) grid (it can still be written with --allow-folded).
+    // The loop on the surface is projected once; each try works on a fresh copy of it. A try
+    // whose corners and refinement are an earlier try's would repeat it exactly (that try
+    // folded, or there would be no retry): it is left out (on the 40-file corpus the last
+    // try's corners were the second's in every face that got there).
+    let lp = quietly(|| {
+        FaceLoop::new(
+            &surface,
+            edges,
+            bounds(&surface),
+            gap_tolerance(face),
+            false,
+        )
+        .map_err(|m| Error::input(place, m))
+    })
+    .unwrap_or_else(|_| Err(truck_failed(place)))?;
+    let mut done: Vec<([LoopPoint; 4], usize)> = Vec::with_capacity(TRIES.len());
     let mut best: Option<Result<FaceGrid>> = None;
     for (min_turn, refine) in TRIES {
+        let corners = quietly(|| lp.corners(min_turn)).map_err(|_| truck_failed(place))?;
+        if done.contains(&(corners.0, refine)) {
+            continue;
+        }
+        done.push((corners.0, refine));
         let r = attempt(
             face,
             &surface,
-            edges,
+            lp.clone(),
+            corners,
             (ni, nj),
             dist,
-            (min_turn, refine),
+            refine,
             solver,
             place,
         );
         let retry = match &r {
             Err(Error::Folded { place: p, .. }) => p.ends_with("(u, v) grid"),
             Err(_) => false,
-            Ok(g) => quality::quality_surface(&g.result.grid).is_folded(),
+            Ok(g) => g.quality.is_folded(),
         };
         match best {
             None if !retry => return r,
@@ -169,37 +208,30 @@ fn trimmed(
 const TRIES: [(Option<f64>, usize); 4] =
     [(None, 1), (Some(1e-3), 1), (Some(1e-3), 2), (Some(0.35), 1)];
 
-/// One try of [`trimmed`] with corners at vertices turning by more than `min_turn` and the
-/// (u, v) grid `refine` times finer than the final grid.
+/// The error of a panic in truck while the boundary is sampled.
+fn truck_failed(place: &str) -> Error {
+    Error::input(
+        place,
+        "truck failed to evaluate a boundary edge or the surface",
+    )
+}
+
+/// One try of [`trimmed`] on the loop `lp` (not yet sampled) with the corners `corners`
+/// ([`FaceLoop::corners`]) and the (u, v) grid `refine` times finer than the final grid.
 #[allow(clippy::too_many_arguments)]
 fn attempt(
     face: &StepFace,
     surface: &CadSurface,
-    edges: &[super::LoopEdge],
+    lp: FaceLoop,
+    corners: ([LoopPoint; 4], [f64; 4]),
     (ni, nj): (usize, usize),
     dist: [&DistributionSpec; 2],
-    (min_turn, refine): (Option<f64>, usize),
+    refine: usize,
     solver: &mut dyn LinearSolver,
     place: &str,
 ) -> Result<FaceGrid> {
-    let b = quietly(|| {
-        boundary(
-            surface,
-            edges,
-            gap_tolerance(face),
-            face.orientation,
-            (ni, nj),
-            dist,
-            (min_turn, refine),
-            place,
-        )
-    })
-    .unwrap_or_else(|_| {
-        Err(Error::input(
-            place,
-            "truck failed to evaluate a boundary edge or the surface",
-        ))
-    })?;
+    let b = quietly(|| boundary(lp, corners, face.orientation, (ni, nj), dist, refine, place))
+        .unwrap_or_else(|_| Err(truck_failed(place)))?;
     // Steps 2–3: the face's Winslow parametrization and Section 4 on the composite surface;
     // the final grid lies on the CAD surface exactly, boundary nodes on the CAD edges.
     let coarse =
@@ -227,12 +259,12 @@ fn attempt(
             "truck failed to evaluate the surface inside the face",
         ))
     })?;
-    Ok(FaceGrid {
-        result: r.result,
-        corner_angles: b.angles.to_vec(),
-        gap: b.gap,
-        uv_picard: r.uv_picard,
-    })
+    Ok(FaceGrid::new(
+        r.result,
+        b.angles.to_vec(),
+        b.gap,
+        r.uv_picard,
+    ))
 }
 
 /// The four block edges E1..E4 of a face: 3D points on the CAD edges, their (u, v), and
@@ -250,20 +282,15 @@ struct FaceBoundary {
 /// nodes: E3 = q0 → q1 and E4 = q3 → q2 with `ni` nodes by `dist[0]`, E1 = q0 → q3 and
 /// E2 = q1 → q2 with `nj` nodes by `dist[1]`; each gap between them split into `refine`
 /// equal arclengths (the nodes are every `refine`-th point).
-#[allow(clippy::too_many_arguments)]
 fn boundary(
-    surface: &CadSurface,
-    edges: &[super::LoopEdge],
-    gap_tol: (f64, f64),
+    mut lp: FaceLoop,
+    (c, angles): ([LoopPoint; 4], [f64; 4]),
     orientation: bool,
     (ni, nj): (usize, usize),
     dist: [&DistributionSpec; 2],
-    (min_turn, refine): (Option<f64>, usize),
+    refine: usize,
     place: &str,
 ) -> Result<FaceBoundary> {
-    let err = |m: String| Error::input(place, m);
-    let mut lp = FaceLoop::new(surface, edges, bounds(surface), gap_tol, false).map_err(err)?;
-    let (c, angles) = lp.corners(min_turn);
     let scale = lp.metric_scale();
     let forward = (lp.signed_area(scale) > 0.0) == orientation;
     // A pole (corners c[0] = c[3]) is the side E1 either way round.

@@ -180,12 +180,7 @@ fn holes(
             solver,
             &at,
         )?;
-        out.push(FaceGrid {
-            result: r.result,
-            corner_angles: Vec::new(),
-            gap,
-            uv_picard: r.uv_picard,
-        });
+        out.push(FaceGrid::new(r.result, Vec::new(), gap, r.uv_picard));
     }
     Ok(out)
 }

@@ -24,6 +24,7 @@ pub(super) const NS: usize = 32;
 const DEGENERATE: f64 = 1e-9;
 
 /// One oriented edge of the loop with its arclength table and its (u, v) samples.
+#[derive(Clone)]
 pub(super) struct LoopCurve {
     /// The edge's number in the loop as the file gives it (1-based, zero-length edges
     /// counted), for messages.
@@ -41,7 +42,9 @@ pub(super) struct LoopPoint {
     pub sigma: f64,
 }
 
-/// A face's boundary loop on its surface.
+/// A face's boundary loop on its surface (a clone of a loop not yet sampled is the loop
+/// [`FaceLoop::new`] would build again: one per try of a face).
+#[derive(Clone)]
 pub(super) struct FaceLoop<'a> {
     surface: &'a CadSurface,
     bounds: [[f64; 2]; 2],

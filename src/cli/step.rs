@@ -11,7 +11,7 @@ use ellipgrid::io::plot3d::{self, Plot3dFormat};
 use ellipgrid::io::Block;
 use ellipgrid::job::MeshOptions;
 use ellipgrid::quality::quality3d::AnyQuality;
-use ellipgrid::{job, quality, solve, Error, Grid2, Result};
+use ellipgrid::{job, solve, Error, Grid2, Result};
 use ellipgrid_geometry::{HermiteSurface, Vec3};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -226,7 +226,7 @@ fn grid(a: &GridArgs) -> Result<()> {
             } else {
                 (place.clone(), format!("face{}", f.index))
             };
-            let q = quality::quality_surface(&g.result.grid);
+            let q = g.quality;
             if !a.quiet {
                 println!("{block} ({}, {} × {} nodes):", f.surface_type, a.ni, a.nj);
                 if !g.corner_angles.is_empty() {

@@ -252,14 +252,31 @@ pub fn solve_harmonic<const D: usize>(
     solver: &mut dyn LinearSolver,
     place: &str,
 ) -> Result<Vec<f64>> {
-    let mut s = dirichlet_values(g, conds, place)?;
     let rows = flux_rows(g, place)?;
-    let (a, rhs, u) = assemble(g, &rows, &s, conds);
+    solve_on(g, &rows, conds, solver, &mut None, place)
+}
+
+/// [`solve_harmonic`] with the flux rows of `g` given, and `set_up` the operator `solver` was
+/// last set up for by this function (if any): an equal operator is not set up again (the s and
+/// t problems of [`harmonic_st`] share theirs where their edges' kinds agree).
+fn solve_on<const D: usize>(
+    g: &Grid2<D>,
+    rows: &[[f64; 9]],
+    conds: &[EdgeCondition; 4],
+    solver: &mut dyn LinearSolver,
+    set_up: &mut Option<Stencil9>,
+    place: &str,
+) -> Result<Vec<f64>> {
+    let mut s = dirichlet_values(g, conds, place)?;
+    let (a, rhs, u) = assemble(g, rows, &s, conds);
     let solve_err = |source| Error::Solve {
         place: place.to_string(),
         source,
     };
-    solver.setup(&a).map_err(solve_err)?;
+    if set_up.as_ref() != Some(&a) {
+        *set_up = None;
+        solver.setup(&a).map_err(solve_err)?;
+    }
     let mut x = vec![0.0; rhs.len()];
     let ctl = SolveControl {
         rel_tol: 1e-12,
@@ -290,6 +307,7 @@ pub fn solve_harmonic<const D: usize>(
             s[g.idx(u.i0 + ii, u.j0 + jj)] = x[ii + u.nx * jj];
         }
     }
+    *set_up = Some(a);
     Ok(s)
 }
 
@@ -400,8 +418,25 @@ pub fn harmonic_st<const D: usize>(
         EdgeCondition::Dirichlet(vec![0.0; ni]),
         EdgeCondition::Dirichlet(vec![1.0; ni]),
     ];
-    let s = solve_harmonic(g, &s_conds, solver, &format!("{place} (harmonic s)"))?;
-    let t = solve_harmonic(g, &t_conds, solver, &format!("{place} (harmonic t)"))?;
+    // (the flux rows' errors name the s problem, the first solved)
+    let rows = flux_rows(g, &format!("{place} (harmonic s)"))?;
+    let mut set_up = None;
+    let s = solve_on(
+        g,
+        &rows,
+        &s_conds,
+        solver,
+        &mut set_up,
+        &format!("{place} (harmonic s)"),
+    )?;
+    let t = solve_on(
+        g,
+        &rows,
+        &t_conds,
+        solver,
+        &mut set_up,
+        &format!("{place} (harmonic t)"),
+    )?;
     Ok((s, t))
 }
 
