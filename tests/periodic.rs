@@ -255,6 +255,10 @@ fn the_one_block_naca0012_o_grid_converges_fold_free() {
     // on average, 12.9° at worst at the base's corners (23.6° / 66.9° without, measured).
     let o = &rep.quality.orthogonality[2];
     assert!(o.mean_deg < 1.0 && o.max_deg < 15.0, "{o:?}");
+    // The report carries both solves: step 1 (straight-line control functions, 16 Newton
+    // steps) as the `first` of step 3's history (8 steps, measured).
+    let first = picard.first.as_ref().expect("step 1's history");
+    assert!(first.converged && first.steps > 0 && first.history.len() == first.steps);
     // The seam is an interface of the block with itself, and it is smooth.
     let seam = r
         .report
@@ -396,6 +400,17 @@ fn the_shipped_example_runs_through_the_command_line() {
     assert_eq!(b["quality"]["folded_cells"], 0);
     assert_eq!(b["picard"]["converged"], true);
     assert_eq!(b["picard"]["linear_solver"], "direct-lu");
+    // Step 1 of the orthogonality in the JSON report, with its history.
+    assert_eq!(b["picard"]["first"]["converged"], true);
+    assert!(b["picard"]["first"]["history"].as_array().unwrap().len() > 1);
+    // and printed before step 3's
+    let o = ellipgrid(d.path(), &["run", case.to_str().unwrap(), "-o", "two.x"]);
+    let out = text(&o);
+    let (s1, s3) = (
+        out.find("orthogonality, step 1").unwrap(),
+        out.find("orthogonality, step 3").unwrap(),
+    );
+    assert!(s1 < s3, "{out}");
     // The written grid has its seam duplicated bit for bit, and the connectivity file lists
     // the seam as the block's 1-to-1 interface with itself.
     let f = ellipgrid::io::plot3d::read_plot3d(&d.path().join("one.x")).unwrap();

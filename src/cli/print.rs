@@ -189,8 +189,14 @@ fn iteration(p: &PicardInfo) -> String {
     }
 }
 
-/// Prints a Picard (or Newton–Krylov) history.
+/// Prints a Picard (or Newton–Krylov) history, after the one it started from (step 1 of
+/// the orthogonality), if any.
 pub fn history(p: &PicardInfo) {
+    if let Some(f) = &p.first {
+        println!("  orthogonality, step 1 (straight-line control functions):");
+        history(f);
+        println!("  orthogonality, step 3 (Hermite-blended control functions) from its grid:");
+    }
     println!(
         "  {} steps ({}; {}), {}",
         p.steps,

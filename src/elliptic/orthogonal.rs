@@ -229,7 +229,7 @@ pub(crate) fn steps<const D: usize>(
     let (s, t) = harmonic_st(&step1.grid, orthogonal, solver, place)?;
     let ef = edge_functions(&step1.grid, &s, &t, place)?;
     let pg = hermite_blend(&ef, orthogonal, place)?;
-    let (grid, picard) = if nested {
+    let (grid, mut picard) = if nested {
         let (r, _) =
             nested::solve_nested_from(b, step1.grid, pg.clone(), solver, params, place, t0)?;
         (r.grid, r.picard)
@@ -237,6 +237,7 @@ pub(crate) fn steps<const D: usize>(
         let ctrl = Control2::from_algebraic(&pg);
         poisson2d::solve_from(b, step1.grid, &ctrl, solver, params, place)?
     };
+    picard.first = Some(Box::new(step1.picard.clone()));
     Ok(OrthogonalResult {
         grid,
         picard,
@@ -387,6 +388,8 @@ mod tests {
         )
         .unwrap();
         assert!(r.picard.converged);
+        // step 1's history travels with step 3's
+        assert_eq!(r.picard.first.as_deref(), Some(&r.straight));
         for c in 0..2 {
             for (u, v) in r.grid.coord(c).iter().zip(exact.coord(c)) {
                 assert!((u - v).abs() < 1e-10, "{u} vs {v}");

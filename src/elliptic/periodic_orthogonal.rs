@@ -35,7 +35,7 @@ use crate::{Error, Result};
 /// Grids one periodic block with orthogonality at the flagged ring sides (`orthogonal`
 /// indexed E1, E2, E3, E4; the cut's flags must be false): step 1 from `start` (the periodic
 /// start if None), then steps 2–3 (module docs) if E3 or E4 is flagged. Returns the grid, the
-/// Picard history of its solves (step 1's, then step 3's), and the (s, t) whose control
+/// Picard history of step 3 with step 1's as its `first`, and the (s, t) whose control
 /// functions gave it (the wall passes remap these).
 ///
 /// # Errors
@@ -75,13 +75,9 @@ pub fn grid_block<const D: usize>(
     let (s3, s4) = ring_edge_functions(&step1.grid, &s, place)?;
     let bl = Blend::from_edges(sides[0], sides[1]);
     let pg = periodic_blend(&s3, &s4, &normalized_arclength(b.edge(Edge::E1)), bl);
-    let (mut grid, mut picard) = (step1.grid, step1.picard);
-    picard.append(periodic::solve(
-        &mut grid,
-        &periodic_control(&pg),
-        params,
-        place,
-    )?);
+    let mut grid = step1.grid;
+    let mut picard = periodic::solve(&mut grid, &periodic_control(&pg), params, place)?;
+    picard.first = Some(Box::new(step1.picard));
     Ok((BlockResult { grid, picard }, pg))
 }
 

@@ -209,6 +209,12 @@ pub struct PicardInfo {
     pub coarse_steps: Vec<usize>,
     /// Per-step history.
     pub history: Vec<PicardStep>,
+    /// The solve whose grid this one started from, reported with it: step 1 of the
+    /// orthogonality of Section 2.4 (straight-line control functions) before the solve with
+    /// the blended ones. Its steps are not in `steps` and `history`; its time is in
+    /// `work_units` where those were measured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first: Option<Box<PicardInfo>>,
 }
 
 impl PicardInfo {
@@ -498,6 +504,7 @@ pub(crate) fn info(
         work_units: None,
         coarse_steps: Vec::new(),
         history,
+        first: None,
     }
 }
 
