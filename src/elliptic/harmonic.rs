@@ -381,21 +381,13 @@ fn assemble<const D: usize>(
     (a, rhs, u)
 }
 
-/// The s and t problems of Section 2.4 on grid `g` (METHOD.md §3): s = 0 on E1, 1 on E2, and
-/// on E3/E4 the normalized arclength [30]–[38], or zero Neumann flux where that edge is
-/// orthogonal; t = 0 on E3, 1 on E4, and on E1/E2 arclength or Neumann. An edge collapsed to
-/// a point (a pole) takes the opposite edge's arclength ([`edge_arclengths`]). `orthogonal` is
-/// indexed E1, E2, E3, E4. With no orthogonal edge this is the harmonic map of Section 1 on a
-/// given grid (the Laplace–Beltrami step of the Section 4 pipeline).
-///
-/// Returns (s, t) at every node (i fastest); their boundary values are the new edge functions
-/// of eq. [46].
-pub fn harmonic_st<const D: usize>(
+/// The edge conditions of the s and t problems of [`harmonic_st`] on grid `g`: s = 0 on E1,
+/// 1 on E2, t = 0 on E3, 1 on E4; on the other edges the normalized arclength, or zero
+/// Neumann flux where `orthogonal` (E1, E2, E3, E4) flags the edge.
+pub(crate) fn st_conditions<const D: usize>(
     g: &Grid2<D>,
     orthogonal: [bool; 4],
-    solver: &mut dyn LinearSolver,
-    place: &str,
-) -> Result<(Vec<f64>, Vec<f64>)> {
+) -> [[EdgeCondition; 4]; 2] {
     let (ni, nj) = (g.ni(), g.nj());
     let edges = Edge::ALL.map(|e| g.edge(e));
     let arclength = edge_arclengths(edges.each_ref().map(|e| &e[..]));
@@ -418,6 +410,25 @@ pub fn harmonic_st<const D: usize>(
         EdgeCondition::Dirichlet(vec![0.0; ni]),
         EdgeCondition::Dirichlet(vec![1.0; ni]),
     ];
+    [s_conds, t_conds]
+}
+
+/// The s and t problems of Section 2.4 on grid `g` (METHOD.md §3): s = 0 on E1, 1 on E2, and
+/// on E3/E4 the normalized arclength [30]–[38], or zero Neumann flux where that edge is
+/// orthogonal; t = 0 on E3, 1 on E4, and on E1/E2 arclength or Neumann. An edge collapsed to
+/// a point (a pole) takes the opposite edge's arclength ([`edge_arclengths`]). `orthogonal` is
+/// indexed E1, E2, E3, E4. With no orthogonal edge this is the harmonic map of Section 1 on a
+/// given grid (the Laplace–Beltrami step of the Section 4 pipeline).
+///
+/// Returns (s, t) at every node (i fastest); their boundary values are the new edge functions
+/// of eq. [46].
+pub fn harmonic_st<const D: usize>(
+    g: &Grid2<D>,
+    orthogonal: [bool; 4],
+    solver: &mut dyn LinearSolver,
+    place: &str,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let [s_conds, t_conds] = st_conditions(g, orthogonal);
     // (the flux rows' errors name the s problem, the first solved)
     let rows = flux_rows(g, &format!("{place} (harmonic s)"))?;
     let mut set_up = None;

@@ -302,29 +302,7 @@ fn harmonic_st_sets_up_a_shared_operator_once_and_gives_the_same_bits() {
         let (s, t) = harmonic_st(&g, orth, &mut shared, "t").unwrap();
         assert_eq!(shared.1, setups, "{orth:?}");
         // the same problems solved apart, each with a solver of its own
-        let arclength = crate::grid::arclength::edge_arclengths(
-            Edge::ALL.map(|e| g.edge(e)).each_ref().map(|e| &e[..]),
-        );
-        let side = |e: Edge| {
-            if orth[e.index()] {
-                EdgeCondition::Neumann
-            } else {
-                EdgeCondition::Dirichlet(arclength[e.index()].clone())
-            }
-        };
-        let (ni, nj) = (g.ni(), g.nj());
-        let s_conds = [
-            EdgeCondition::Dirichlet(vec![0.0; nj]),
-            EdgeCondition::Dirichlet(vec![1.0; nj]),
-            side(Edge::E3),
-            side(Edge::E4),
-        ];
-        let t_conds = [
-            side(Edge::E1),
-            side(Edge::E2),
-            EdgeCondition::Dirichlet(vec![0.0; ni]),
-            EdgeCondition::Dirichlet(vec![1.0; ni]),
-        ];
+        let [s_conds, t_conds] = st_conditions(&g, orth);
         assert_eq!(solve_harmonic(&g, &s_conds, &mut fresh(), "t").unwrap(), s);
         assert_eq!(solve_harmonic(&g, &t_conds, &mut fresh(), "t").unwrap(), t);
     }
