@@ -10,8 +10,9 @@
 //!    new edge functions. There is no t problem: t = t_cut(η), the cut's distribution, on
 //!    every ξ-line, as in [`crate::algebraic::periodic`].
 //! 3. Blend s in t with zero slope at the orthogonal sides ([`periodic_blend`], eqs.
-//!    [47]–[49] with t independent of s, so each node is explicit), take the control functions [19] of the
-//!    blend ([`periodic_control`]) and solve [24] again from the grid of step 1.
+//!    [47]–[49] with t independent of s, so each node is explicit), take the control
+//!    functions [19] of the blend ([`periodic_control`]) and solve [24] again from the grid
+//!    of step 1.
 //!
 //! With both sides orthogonal s is fixed up to a constant: the wall's seam node is held at 0.
 //! The cut carries no condition of its own (it is not a boundary), so `orthogonal` on E1/E2 is
@@ -61,15 +62,15 @@ pub fn grid_block<const D: usize>(
         ));
     }
     let sides = [orthogonal[2], orthogonal[3]];
-    let step1 = periodic::grid_block(b, start, [false; 4], kind, params, place)?;
-    if !sides.contains(&true) {
-        return Ok((step1, periodic_param(b)));
-    }
-    if kind != ControlKind::Algebraic {
+    if sides.contains(&true) && kind != ControlKind::Algebraic {
         return Err(Error::input(
             place,
             "orthogonal edges need the algebraic control functions (control = \"algebraic\")",
         ));
+    }
+    let step1 = periodic::grid_block(b, start, [false; 4], kind, params, place)?;
+    if !sides.contains(&true) {
+        return Ok((step1, periodic_param(b)));
     }
     let s = harmonic_s(&step1.grid, sides, place)?;
     let (s3, s4) = ring_edge_functions(&step1.grid, &s, place)?;
