@@ -384,7 +384,12 @@ impl Multigrid {
         out.copy_from_slice(&ws.lv[0].x);
     }
 
-    /// Plain multigrid cycles.
+    /// Plain multigrid cycles, in correction form: each cycle solves `A e = r` from `e = 0`
+    /// for the residual `r = b − A x` kept in the fine level's right-hand side, and
+    /// `x ← x + e`, `r ← r − A e` from the f64 operator ([`relax::correct`]). The fixed point
+    /// is `A x = b` whatever the precision of the smoothers' factors (the y-line operator is
+    /// stored in f32), and the caller's `x` is the solution vector (no padded copy). On an
+    /// error `x` holds the last iterate.
     fn solve_cycles(
         &self,
         h: &Hierarchy,
@@ -397,29 +402,24 @@ impl Multigrid {
         let (nx, ny, n) = (l0.nx, l0.ny, l0.n());
         let pd = pad(nx);
         let mut ws = pool.take(|ws| ws.fits(h), || Workspace::new(h));
-        let res = (|| {
+        let res = {
             let v = &mut ws.lv[0];
             v.b[pd..pd + n].copy_from_slice(b);
-            v.x[pd..pd + n].copy_from_slice(x);
-            let r0 = residual(
-                &l0.a,
-                Some(&l0.yop),
-                nx,
-                ny,
-                &v.x,
-                &v.b,
-                &mut v.r,
-                Zeroed::None,
-            )
-            .sqrt();
-            let info = stationary(r0, ctl, || {
-                let zeroed = h.cycle(0, h.params.cycle, &mut ws.lv, &mut ws.band);
+            let r0 = if x.iter().all(|&xi| xi == 0.0) {
+                b.iter().map(|bi| bi * bi).sum::<f64>().sqrt()
+            } else {
+                v.x[pd..pd + n].copy_from_slice(x);
+                let r0 = residual(&l0.a, None, nx, ny, &v.x, &v.b, &mut v.r, Zeroed::None);
+                std::mem::swap(&mut v.b, &mut v.r);
+                r0.sqrt()
+            };
+            stationary(r0, ctl, || {
+                ws.lv[0].x.fill(0.0);
+                h.cycle(0, h.params.cycle, &mut ws.lv, &mut ws.band);
                 let v = &mut ws.lv[0];
-                residual(&l0.a, Some(&l0.yop), nx, ny, &v.x, &v.b, &mut v.r, zeroed).sqrt()
-            })?;
-            x.copy_from_slice(&ws.lv[0].x[pd..pd + n]);
-            Ok(info)
-        })();
+                relax::correct(&l0.a, nx, ny, &v.x, &mut v.b, x).sqrt()
+            })
+        };
         pool.put(ws);
         res
     }

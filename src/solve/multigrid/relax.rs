@@ -55,8 +55,8 @@ pub(super) type Stencils = [[f64; 9]];
 /// by row. A block occupies `[i0 ny, i1 ny)`.
 #[derive(Clone, Debug, Default)]
 pub(super) struct YLineOp {
-    pub op: Vec<[f64; 8]>,
-    pub cp: Vec<f64>,
+    pub op: Vec<[f32; 8]>,
+    pub cp: Vec<f32>,
 }
 
 impl YLineOp {
@@ -94,12 +94,12 @@ impl YLineOp {
 fn for_blocks<T: std::iter::Sum<T> + Send>(
     nx: usize,
     ny: usize,
-    op: &[[f64; 8]],
-    cp: &[f64],
-    f: impl Fn(usize, usize, &[[f64; 8]], &[f64]) -> T + Sync + Send,
+    op: &[[f32; 8]],
+    cp: &[f32],
+    f: impl Fn(usize, usize, &[[f32; 8]], &[f32]) -> T + Sync + Send,
 ) -> T {
     let chunk = YLineOp::W * ny;
-    let g = |(b, (op, cp)): (usize, (&[[f64; 8]], &[f64]))| {
+    let g = |(b, (op, cp)): (usize, (&[[f32; 8]], &[f32]))| {
         let i0 = b * YLineOp::W;
         f(i0, (i0 + YLineOp::W).min(nx), op, cp)
     };
@@ -128,7 +128,7 @@ pub(super) fn factor_y(
 ) -> Result<(), SolveError> {
     yop.resize(nx * ny);
     let chunk = YLineOp::W * ny;
-    let work = |(b, (op, cp)): (usize, (&mut [[f64; 8]], &mut [f64]))| {
+    let work = |(b, (op, cp)): (usize, (&mut [[f32; 8]], &mut [f32]))| {
         let i0 = b * YLineOp::W;
         let i1 = (i0 + YLineOp::W).min(nx);
         for colour in 0..2 {
@@ -139,23 +139,29 @@ pub(super) fn factor_y(
                     let i = i0 + colour + 2 * t;
                     let m = &a[i + nx * j];
                     let q = base + j * cnt + t;
-                    let cprev = if j > 0 { cp[q - cnt] } else { 0.0 };
+                    // the pivot from the stored (rounded) factor below: the Thomas
+                    // factorization of the tridiagonal system the sweep solves
+                    let cprev = if j > 0 { f64::from(cp[q - cnt]) } else { 0.0 };
                     let piv = m[4] - m[1] * cprev;
                     if !(piv.is_finite() && piv != 0.0) {
                         return Err(pivot_error(i, j, piv, 'y'));
                     }
                     let v = 1.0 / piv;
+                    let c = m[7] * v;
+                    if !(v as f32).is_finite() || !(c as f32).is_finite() {
+                        return Err(pivot_error(i, j, piv, 'y'));
+                    }
                     op[q] = [
-                        m[0] * v,
-                        m[1] * v,
-                        m[2] * v,
-                        m[3] * v,
-                        v,
-                        m[5] * v,
-                        m[6] * v,
-                        m[8] * v,
+                        (m[0] * v) as f32,
+                        (m[1] * v) as f32,
+                        (m[2] * v) as f32,
+                        (m[3] * v) as f32,
+                        v as f32,
+                        (m[5] * v) as f32,
+                        (m[6] * v) as f32,
+                        (m[8] * v) as f32,
                     ];
-                    cp[q] = m[7] * v;
+                    cp[q] = c as f32;
                 }
             }
         }
@@ -230,6 +236,7 @@ pub(super) fn yzebra(yop: &YLineOp, nx: usize, ny: usize, x: &mut [f64], b: &[f6
                     prefetch_span(b.as_ptr().add(ahead), 2 * cnt);
                 }
                 for (t, m) in ops.iter().enumerate() {
+                    let m = m.map(f64::from);
                     let i = first + 2 * t;
                     let p = row + i;
                     let xq = x.add(p);
@@ -246,9 +253,9 @@ pub(super) fn yzebra(yop: &YLineOp, nx: usize, ny: usize, x: &mut [f64], b: &[f6
             for j in (0..ny.saturating_sub(1)).rev() {
                 let row = j * nx;
                 let cps = &cp[j * cnt..(j + 1) * cnt];
-                for (t, c) in cps.iter().enumerate() {
+                for (t, &c) in cps.iter().enumerate() {
                     let xq = x.add(row + first + 2 * t);
-                    *xq -= c * *xq.add(nx);
+                    *xq -= f64::from(c) * *xq.add(nx);
                 }
             }
         }
@@ -440,13 +447,16 @@ fn residual_cols(
                     cps
                 };
                 for (t, m) in ops.iter().enumerate() {
+                    let m = m.map(f64::from);
                     let p = row + first + 2 * t;
-                    let cpb = if j > 0 { below[t] } else { 0.0 };
+                    let cpb = if j > 0 { f64::from(below[t]) } else { 0.0 };
                     let xq = x.as_ptr().add(pd + p);
                     let v = m[4] * *b.get_unchecked(p)
                         - (m[0] * *xq.sub(nx + 1) + m[1] * *xq.sub(nx) + m[2] * *xq.sub(nx - 1))
                         - (m[3] * *xq.sub(1) + (1.0 + m[1] * cpb) * *xq + m[5] * *xq.add(1))
-                        - (m[6] * *xq.add(nx - 1) + cps[t] * *xq.add(nx) + m[7] * *xq.add(nx + 1));
+                        - (m[6] * *xq.add(nx - 1)
+                            + f64::from(cps[t]) * *xq.add(nx)
+                            + m[7] * *xq.add(nx + 1));
                     let res = v / m[4];
                     *rp.add(p) = res;
                     ss += res * res;
@@ -455,6 +465,71 @@ fn residual_cols(
         }
         ss
     })
+}
+
+/// After a cycle for the correction `e` (padded) of the residual equation `A e = r`:
+/// `r ← r − A e` (padded, from the f64 operator `a`) and `x ← x + e` (`x` unpadded, the
+/// caller's solution); returns ‖r‖₂². The residual so kept is the true `b − A x` up to the
+/// round-off of the updates, whatever the smoothers' precision.
+pub(super) fn correct(
+    a: &[[f64; 9]],
+    nx: usize,
+    ny: usize,
+    e: &[f64],
+    r: &mut [f64],
+    x: &mut [f64],
+) -> f64 {
+    let pd = pad(nx);
+    let n = nx * ny;
+    assert_eq!(e.len(), padded_len(nx, ny));
+    assert_eq!(r.len(), padded_len(nx, ny));
+    assert_eq!(a.len(), n);
+    assert_eq!(x.len(), n);
+    let rows_per_task = (8192 / nx).max(1);
+    let chunk = rows_per_task * nx;
+    let work = |(t, (rr, xx)): (usize, (&mut [f64], &mut [f64]))| {
+        let j0 = t * rows_per_task;
+        let mut ss = 0.0;
+        for (jj, (rr, xx)) in rr.chunks_mut(nx).zip(xx.chunks_mut(nx)).enumerate() {
+            let j = j0 + jj;
+            let base = pd + j * nx;
+            let w = &e[base - nx - 1..base + 2 * nx + 1];
+            let (s, c, nn) = (&w[..nx + 2], &w[nx..2 * nx + 2], &w[2 * nx..3 * nx + 2]);
+            let a = &a[j * nx..(j + 1) * nx];
+            for i in 0..nx {
+                let m = &a[i];
+                let v = m[0] * s[i]
+                    + m[1] * s[i + 1]
+                    + m[2] * s[i + 2]
+                    + m[3] * c[i]
+                    + m[4] * c[i + 1]
+                    + m[5] * c[i + 2]
+                    + m[6] * nn[i]
+                    + m[7] * nn[i + 1]
+                    + m[8] * nn[i + 2];
+                let ri = rr[i] - v;
+                rr[i] = ri;
+                ss += ri * ri;
+                xx[i] += c[i + 1];
+            }
+        }
+        ss
+    };
+    let rr = &mut r[pd..pd + n];
+    if use_par(n) {
+        in_order(
+            rr.par_chunks_mut(chunk)
+                .zip(x.par_chunks_mut(chunk))
+                .enumerate()
+                .map(work),
+        )
+    } else {
+        rr.chunks_mut(chunk)
+            .zip(x.chunks_mut(chunk))
+            .enumerate()
+            .map(work)
+            .sum()
+    }
 }
 
 /// `y = A x` on padded vectors; returns ‖y‖₂².

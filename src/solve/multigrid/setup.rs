@@ -25,7 +25,7 @@ pub(super) struct Level {
     /// x-line factors and y-line operator of the smoother (see `relax.rs`; empty if the
     /// smoother does not use them, and on the coarsest level), or with lean y-lines their
     /// factors `ycp` instead of `yop` (see `yline.rs`).
-    pub xop: Vec<[f64; 2]>,
+    pub xop: Vec<[f32; 2]>,
     pub yop: YLineOp,
     pub ycp: Vec<f64>,
     /// Prolongation and restriction stars to the next coarser level (one per coarse point;

@@ -628,3 +628,4 @@ fn adopt_solves_as_setup_and_gives_the_operator_back() {
 
 mod kernels;
 mod lean;
+mod precision;

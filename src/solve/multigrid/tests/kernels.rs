@@ -193,10 +193,13 @@ fn explore_factors() {
     }
 }
 
-/// After a zebra half sweep the relaxed lines have a zero residual, and the half residual
-/// (rows from the operator, columns from the y-line operator) equals the full one.
+/// After a zebra half sweep the relaxed lines have a zero residual (to the f32 line factors'
+/// rounding), and the half residual (rows from the operator, columns from the y-line
+/// operator) equals the full one to that rounding.
 #[test]
 fn half_residuals_match_full_residual() {
+    // the f32 factors solve the lines to ~1e-7 of the equations' terms (values here are O(1))
+    let tol = 2e-6;
     for (nx, ny) in [(17, 12), (16, 9), (2, 5)] {
         let (mg, b) = one_level_mixed(nx, ny, false);
         let lev = &mg.h.as_ref().unwrap().levels[0];
@@ -210,21 +213,23 @@ fn half_residuals_match_full_residual() {
             let half = relax::residual(&lev.a, Some(&lev.yop), nx, ny, &x, &b, &mut rh, zeroed);
             for j in (colour..ny).step_by(2) {
                 for i in 0..nx {
-                    assert!(rf[pd + i + nx * j].abs() < 1e-13, "row {j}");
+                    let r = rf[pd + i + nx * j];
+                    assert!(r.abs() < tol, "row {j}: {r:e}");
                 }
             }
-            assert!(rf.iter().zip(&rh).all(|(u, v)| (u - v).abs() < 1e-13));
-            assert!((full - half).abs() < 1e-12 * full);
+            assert!(rf.iter().zip(&rh).all(|(u, v)| (u - v).abs() < tol));
+            assert!((full - half).abs() < 1e-5 * full);
             relax::yzebra(&lev.yop, nx, ny, &mut x, &b, colour);
             relax::residual(&lev.a, None, nx, ny, &x, &b, &mut rf, relax::Zeroed::None);
             let zeroed = relax::Zeroed::Cols(colour);
             relax::residual(&lev.a, Some(&lev.yop), nx, ny, &x, &b, &mut rh, zeroed);
             for j in 0..ny {
                 for i in (colour..nx).step_by(2) {
-                    assert!(rf[pd + i + nx * j].abs() < 1e-13, "column {i}");
+                    let r = rf[pd + i + nx * j];
+                    assert!(r.abs() < tol, "column {i}: {r:e}");
                 }
             }
-            assert!(rf.iter().zip(&rh).all(|(u, v)| (u - v).abs() < 1e-13));
+            assert!(rf.iter().zip(&rh).all(|(u, v)| (u - v).abs() < tol));
         }
     }
 }

