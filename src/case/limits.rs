@@ -3,10 +3,11 @@
 //! machine has ("this grid needs ~N GB, the machine has M GB available").
 //!
 //! The memory estimate uses the measured peak of a generation per node, rounded up
-//! (issue #16, `examples/bench_memory.rs`): in 2D 354 bytes on a smooth block (curved 2049²,
-//! Picard steps only) but ~1100 where Newton steps run (dented square 1025²: the block
-//! preconditioner's second hierarchy and the Krylov basis), so 1200; in 3D 880 (warped box
-//! 129³), kept at 2 KB as the bound for the blocks not measured (corrected volumes). The available memory is `MemAvailable` of
+//! (issue #16, `examples/bench_memory.rs`): in 2D 296 bytes on a smooth block (curved 2049²,
+//! Picard steps only) but ~980 where Newton steps run (dented square 1025²: the block
+//! preconditioner's second hierarchy and the Krylov basis; ~1100 before the line factors went
+//! to f32), kept at 1200; in 3D 748 (warped box 129³; 880 before), kept at 2 KB as the bound
+//! for the blocks not measured (corrected volumes, other configurations). The available memory is `MemAvailable` of
 //! `/proc/meminfo`, or the environment variable `ELLIPGRID_MEMORY_GB` when set (to allow
 //! more, or less, than the machine reports); without either only the absolute cap applies.
 

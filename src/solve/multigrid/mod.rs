@@ -152,8 +152,8 @@ pub struct MgParams {
     pub accelerate: bool,
     /// Memory-lean y-lines (`yline.rs`): the y-line smoother keeps only one factor per
     /// unknown and reads the couplings from the operator, instead of a scaled copy of the
-    /// stencil (72 → 8 bytes per unknown and level; the same lines solved, equal to
-    /// round-off). Slower: the y-sweep costs 2–2.5× the line operator's from memory (the
+    /// stencil (36 → 8 bytes per unknown and level; the lines solved exactly in f64, where
+    /// the default's f32 line operator solves them to its rounding). Slower: the y-sweep costs 2–2.5× the line operator's from memory (the
     /// operator read in column strips), a whole 2D grid 16–18 % more CPU time. Default false.
     pub lean_y_lines: bool,
 }

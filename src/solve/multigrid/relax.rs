@@ -6,11 +6,14 @@
 //! The Thomas pivots are factored once per operator: for x-lines the inverse pivots and the
 //! modified upper coefficients (`xline::factor_x`, the sweep reads the stencil itself), for y-lines
 //! a *line operator* (the stencil scaled by the inverse pivots, [`factor_y`]); a sweep only
-//! eliminates the right-hand side. The y-line operator is stored by column blocks ([`YLineOp`]): within a block of
+//! eliminates the right-hand side. Both are stored in f32 (computed in f64 and rounded; the
+//! sweeps compute in f64): they solve the lines to ~1e-7 of the equations' terms, which the
+//! plain cycles' correction form (`Multigrid::solve_cycles`, [`correct`]) keeps out of the
+//! solution. The y-line operator is stored by column blocks ([`YLineOp`]): within a block of
 //! [`YLineOp::W`] columns, one colour's records of all rows are contiguous, so that a half
 //! sweep streams through memory while the block's columns stay in cache between the forward
 //! elimination and the back substitution. With [`crate::solve::multigrid::MgParams`]`::lean_y_lines`
-//! the y-lines keep no line operator and read the stencil itself (`yline`): 64 bytes per
+//! the y-lines keep no line operator and read the stencil itself (`yline`): 28 bytes per
 //! unknown less, but slower (see there).
 //!
 //! All vectors here are *padded*: point `p = i + nx j` lives at `v[pad + p]` with
@@ -48,7 +51,7 @@ pub(super) type Stencils = [[f64; 9]];
 /// The y-line operator: per unknown, the stencil scaled by the inverse Thomas pivot of its
 /// column's tridiagonal system `(a_S, a_C, a_N)`, `op = [SW, S, SE, W]·inv, inv, [E, NW, NE]·inv`,
 /// and the modified upper coefficient `cp = a_N·inv` (kept apart: the back substitution reads
-/// only `cp`).
+/// only `cp`), all rounded to f32 (36 bytes per unknown, against 72 in f64).
 ///
 /// Layout: column blocks `[i0, i1)` of `W` columns (the last may be narrower) one after the
 /// other; inside a block, colour 0 (even `i`) for all rows, then colour 1; inside a colour, row

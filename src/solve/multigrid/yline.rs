@@ -4,8 +4,8 @@
 //! padded as in `relax`.
 //!
 //! The sweep reads the couplings from the operator itself, like the x-lines: the factors are
-//! only the modified upper coefficients `cp = a_N / piv` (8 bytes per unknown, against 72 for
-//! `relax`'s line operator, a scaled copy of the stencil stored colour by colour), and the
+//! only the modified upper coefficients `cp = a_N / piv` (8 bytes per unknown, against 36 for
+//! `relax`'s line operator, a scaled copy of the stencil in f32 stored colour by colour), and the
 //! pivot `piv = a_C − a_S · cp_(j−1)` is recomputed from them, bit for bit the one of the
 //! factorization. A y-line reads one stencil in each row, whose cache lines hold the stencils
 //! of both colours; so that the operator comes from memory once per sweep and not once per
