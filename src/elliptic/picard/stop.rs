@@ -53,7 +53,7 @@ const CONTRACTION_WINDOW: usize = 20;
 /// bound is u_k (r² + η) / (1 − r) (the updates after the next shrink by r at least), taken
 /// where it is below the contraction's (NACA0012 O-grid at 4 × 257², step 1:
 /// 3.2e-7 · (1.1e-4 + 9.3e-5) / 0.99 = 6.6e-11 after step 4, where the contraction bound,
-/// 3.6e-9, waited for a fifth step whose update was 2.3e-11). Only the finest level of nested
+/// 4.1e-9, waited for a fifth step whose update was 2.3e-11). Only the finest level of nested
 /// iteration stops on it ([`super::iterate`]).
 pub(crate) fn error_estimate(history: &[PicardStep]) -> f64 {
     let n = history.len();
