@@ -298,3 +298,87 @@ fn shipped_co_block_has_no_highly_skewed_faces() {
         "checkMesh skewness {worst} at {at}; {above} faces above 4 (highly skewed)"
     );
 }
+
+/// checkMesh's "High aspect ratio cells" (issue #19): its aspect ratio compares the Cartesian
+/// projections of the faces, so it sees a wall cell's true aspect ratio (chordwise step over
+/// first height, ~2200 at mid-chord with 64 chordwise intervals and 1e-5 … 2e-5 local chord)
+/// only where the cell's faces are normal to the axes. Known answers first: a box 0.02 × 1e-5
+/// × 0.01 has 2000, the same box turned 3° about z and then x 46 (its face-pair ratio,
+/// rotation-invariant, 2000 both). On the block, off the cap the sections' slope tilts the wall
+/// faces and checkMesh measures under 1000 although the wall cells' true ratio is in the
+/// thousands; on the cap next to the tip edge the wall is normal to y and its x-slope vanishes
+/// (as cos² φ), so the cells are boxes along x, y, z and checkMesh measures their true ratio.
+/// Measured here (41 × 33 × 17): 42 cells above 1000, all on the cap (k = 11 … 15 of the cap's
+/// 10 … 15), j ≤ 3, i = 10 … 20, max 2435; off the cap checkMesh at most 769 on the wall layer,
+/// face-pair ratio up to 44 651. At 65 × 49 × 33 (numpy, the same formulas, matching checkMesh's
+/// set cell by cell): 33 cells, k = 30 … 31, j ≤ 2, 0.1 … 0.4 local chord, max 1815.75;
+/// off the cap 398; face-pair ratio up to 22 259, 10 666 cells above 1000. Inherent to the
+/// prescribed wall spacing with 64 chordwise intervals clustered at the leading and trailing
+/// edges (`.ci/check_meshes.py` allows it with that reason; README, "Volume blocks").
+#[test]
+fn high_aspect_ratio_cells_are_the_axis_aligned_wall_cells_at_the_tip_edge() {
+    use common::foam::{cell_faces, face_pair_aspect_ratio, foam_aspect_ratio};
+    let bx = |turn: f64| {
+        let (c, s) = (turn.to_radians().cos(), turn.to_radians().sin());
+        let mut g = Grid3::zeros(2, 2, 2);
+        for (i, j, k) in (0..8).map(|n| (n & 1, (n >> 1) & 1, n >> 2)) {
+            let (x, y, z) = (0.02 * i as f64, 1e-5 * j as f64, 0.01 * k as f64);
+            // turned about z, then about x
+            let (x, y) = (c * x - s * y, s * x + c * y);
+            g.set(i, j, k, [x, c * y - s * z, s * y + c * z]);
+        }
+        let f = cell_faces(&g, 0, 0, 0);
+        (foam_aspect_ratio(&f), face_pair_aspect_ratio(&f))
+    };
+    let (a0, p0) = bx(0.0);
+    let (a3, p3) = bx(3.0);
+    eprintln!("box: checkMesh {a0:.1} / {a3:.1} turned 3° twice; face pairs {p0:.1} / {p3:.1}");
+    assert!((a0 - 2000.0).abs() < 1e-6 && (p0 - 2000.0).abs() < 1e-6 && (p3 - 2000.0).abs() < 1e-6);
+    assert!(a3 < 50.0, "{a3}");
+
+    let range = |c: &[[usize; 3]], d: usize| {
+        let v = c.iter().map(|c| c[d]);
+        (v.clone().min(), v.max())
+    };
+    let (g, _) = small_grid();
+    let [ni, nj, nk] = g.dims();
+    let cap_start = nk - 1 - shape::cap_intervals(nk);
+    let (mut flagged, mut worst, mut worst_at) = (Vec::new(), 0.0_f64, [0; 3]);
+    let (mut inboard_foam, mut inboard_true) = (0.0_f64, 0.0_f64);
+    for k in 0..nk - 1 {
+        for j in 0..nj - 1 {
+            for i in 0..ni - 1 {
+                let f = cell_faces(&g, i, j, k);
+                let a = foam_aspect_ratio(&f);
+                if a > 1000.0 {
+                    flagged.push([i, j, k]);
+                }
+                if a > worst {
+                    (worst, worst_at) = (a, [i, j, k]);
+                }
+                if k < cap_start && j == 0 {
+                    inboard_foam = inboard_foam.max(a);
+                    inboard_true = inboard_true.max(face_pair_aspect_ratio(&f));
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{ni} x {nj} x {nk}: {} cells above 1000 (i {:?}, j {:?}, k {:?}), max {worst:.1} at \
+         {worst_at:?}; \
+         inboard wall cells: checkMesh max {inboard_foam:.1}, true max {inboard_true:.1}",
+        flagged.len(),
+        range(&flagged, 0),
+        range(&flagged, 1),
+        range(&flagged, 2)
+    );
+    assert!(!flagged.is_empty());
+    for c in &flagged {
+        assert!(
+            c[2] >= cap_start && c[1] <= 4,
+            "flagged cell {c:?} off the cap"
+        );
+    }
+    assert!(inboard_foam < 1000.0, "{inboard_foam}");
+    assert!(inboard_true > 2.0 * worst, "{inboard_true} against {worst}");
+}

@@ -32,10 +32,12 @@
 //! until the updates are ten times smaller.
 //!
 //! # Stop
-//! As for Picard (`picard::error_estimate`): the last update, or once the
-//! updates contract, the a-posteriori bound of a contraction with the larger of the last two
-//! ratios of successive updates plus the step's linear error. Newton's updates shrink faster
-//! than any fixed ratio, so the estimate is pessimistic, i.e. honest.
+//! `picard::error_estimate`: the last update, or once the updates contract, the
+//! a-posteriori bound of a contraction with the larger of the last two ratios of successive
+//! updates plus the step's linear error; after two Newton steps that contract, on the finest
+//! level, the bound of quadratic convergence u (r² + η) / (1 − r) with r the last ratio where
+//! that is smaller (it saves the confirming step: NACA0012 O-grid at 4 × 257², steps 1 and 3
+//! of the orthogonality, fine Newton steps 5 + 5 → 4 + 4 or 4 + 5 per block).
 
 use crate::elliptic::picard::{self, PicardInfo, PicardParams, PicardStep, StepWork, System};
 use crate::solve::gmres::{gmres, GmresWorkspace};

@@ -25,7 +25,7 @@ use crate::elliptic::picard::BlockResult;
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::poisson2d;
 use crate::elliptic::wall2d::{hold_wall_spacing_on, WallSide};
-use crate::grid::arclength::EdgeFunctions;
+use crate::grid::arclength::{chord_length, EdgeFunctions};
 use crate::grid::boundary::Boundary2;
 use crate::grid::{Edge, Grid2};
 use crate::solve::LinearSolver;
@@ -36,10 +36,9 @@ use crate::{Error, Result};
 pub struct OrthogonalResult<const D: usize> {
     /// The final grid (step 3).
     pub grid: Grid2<D>,
-    /// Picard history of step 3.
+    /// Picard history of step 3, with step 1's (straight-line control functions) in its
+    /// `first`.
     pub picard: PicardInfo,
-    /// Picard history of step 1 (straight-line control functions).
-    pub straight: PicardInfo,
     /// The edge functions of step 2, eq. [46] (arclength on the edges that are not orthogonal).
     pub edge_functions: EdgeFunctions,
     /// The algebraic parameters whose control functions gave the final grid: the Hermite blend
@@ -80,25 +79,9 @@ pub fn edge_functions<const D: usize>(
     t: &[f64],
     place: &str,
 ) -> Result<EdgeFunctions> {
-    let (ni, nj) = (g.ni(), g.nj());
-    let along = |nodes: Vec<(usize, usize)>, f: &[f64]| -> (Vec<f64>, Vec<f64>) {
-        let v = nodes.iter().map(|&(i, j)| f[g.idx(i, j)]).collect();
-        let mut arc = vec![0.0];
-        for w in nodes.windows(2) {
-            let (p, q) = (g.point(w[0].0, w[0].1), g.point(w[1].0, w[1].1));
-            let d: f64 = (0..D).map(|c| (q[c] - p[c]).powi(2)).sum::<f64>().sqrt();
-            arc.push(arc.last().copied().unwrap_or(0.0) + d);
-        }
-        (v, arc)
-    };
     let mut out: Vec<Vec<f64>> = Vec::with_capacity(4);
-    for (e, nodes, f) in [
-        (Edge::E1, (0..nj).map(|j| (0, j)).collect::<Vec<_>>(), t),
-        (Edge::E2, (0..nj).map(|j| (ni - 1, j)).collect(), t),
-        (Edge::E3, (0..ni).map(|i| (i, 0)).collect(), s),
-        (Edge::E4, (0..ni).map(|i| (i, nj - 1)).collect(), s),
-    ] {
-        let (mut v, arc) = along(nodes, f);
+    for (e, f) in [(Edge::E1, t), (Edge::E2, t), (Edge::E3, s), (Edge::E4, s)] {
+        let (mut v, arc) = along_edge(g, e, f);
         if let Err(k) = monotone(&mut v, &arc) {
             return Err(Error::input(
                 format!("{place}, edge {e}"),
@@ -123,6 +106,19 @@ pub fn edge_functions<const D: usize>(
 /// How far (relative to the range of the edge function) a node of a harmonic edge function
 /// may fall out of order and still be bridged: round-off, not a wrong solution.
 pub const MAX_DISORDER: f64 = 1e-6;
+
+/// The values of `f` (one per node of `g`) along edge `e` of `g`, and the edge's cumulative
+/// chord length at its nodes.
+pub(crate) fn along_edge<const D: usize>(g: &Grid2<D>, e: Edge, f: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let (ni, nj) = (g.ni(), g.nj());
+    let v = match e {
+        Edge::E1 => (0..nj).map(|j| f[g.idx(0, j)]).collect(),
+        Edge::E2 => (0..nj).map(|j| f[g.idx(ni - 1, j)]).collect(),
+        Edge::E3 => (0..ni).map(|i| f[g.idx(i, 0)]).collect(),
+        Edge::E4 => (0..ni).map(|i| f[g.idx(i, nj - 1)]).collect(),
+    };
+    (v, chord_length(&g.edge(e)))
+}
 
 /// Makes `v` strictly increasing from its first to its last value: an interior node is kept
 /// if it lies above the last kept node and below the last value; runs of other nodes are
@@ -220,8 +216,7 @@ pub(crate) fn steps<const D: usize>(
         let edge_functions = EdgeFunctions::arclength(b);
         return Ok(OrthogonalResult {
             grid: step1.grid,
-            picard: step1.picard.clone(),
-            straight: step1.picard,
+            picard: step1.picard,
             params: straight_line(&edge_functions),
             edge_functions,
         });
@@ -237,11 +232,10 @@ pub(crate) fn steps<const D: usize>(
         let ctrl = Control2::from_algebraic(&pg);
         poisson2d::solve_from(b, step1.grid, &ctrl, solver, params, place)?
     };
-    picard.first = Some(Box::new(step1.picard.clone()));
+    picard.first = Some(Box::new(step1.picard));
     Ok(OrthogonalResult {
         grid,
         picard,
-        straight: step1.picard,
         edge_functions: ef,
         params: pg,
     })
@@ -389,7 +383,8 @@ mod tests {
         .unwrap();
         assert!(r.picard.converged);
         // step 1's history travels with step 3's
-        assert_eq!(r.picard.first.as_deref(), Some(&r.straight));
+        let first = r.picard.first.as_deref().expect("step 1's history");
+        assert!(first.converged && first.steps > 0 && first.first.is_none());
         for c in 0..2 {
             for (u, v) in r.grid.coord(c).iter().zip(exact.coord(c)) {
                 assert!((u - v).abs() < 1e-10, "{u} vs {v}");

@@ -23,7 +23,7 @@ use crate::algebraic::periodic::{periodic_blend, periodic_control, periodic_para
 use crate::algebraic::transform::ParamGrid;
 use crate::algebraic::ControlKind;
 use crate::elliptic::harmonic::flux_rows;
-use crate::elliptic::orthogonal::monotone;
+use crate::elliptic::orthogonal::{along_edge, monotone};
 use crate::elliptic::periodic;
 use crate::elliptic::picard::{BlockResult, PicardParams};
 use crate::grid::arclength::normalized_arclength;
@@ -175,14 +175,8 @@ fn ring_edge_functions<const D: usize>(
     s: &[f64],
     place: &str,
 ) -> Result<(Vec<f64>, Vec<f64>)> {
-    let (ni, nj) = (g.ni(), g.nj());
-    let side = |e: Edge, j: usize| -> Result<Vec<f64>> {
-        let mut v: Vec<f64> = (0..ni).map(|i| s[g.idx(i, j)]).collect();
-        let mut arc = vec![0.0];
-        for w in g.edge(e).windows(2) {
-            let d: f64 = (0..D).map(|c| (w[1][c] - w[0][c]).powi(2)).sum::<f64>();
-            arc.push(arc.last().copied().unwrap_or(0.0) + d.sqrt());
-        }
+    let side = |e: Edge| -> Result<Vec<f64>> {
+        let (mut v, arc) = along_edge(g, e, s);
         monotone(&mut v, &arc).map_err(|k| {
             Error::input(
                 format!("{place}, edge {e}"),
@@ -195,7 +189,7 @@ fn ring_edge_functions<const D: usize>(
         })?;
         Ok(v)
     };
-    Ok((side(Edge::E3, 0)?, side(Edge::E4, nj - 1)?))
+    Ok((side(Edge::E3)?, side(Edge::E4)?))
 }
 
 #[cfg(test)]

@@ -462,8 +462,13 @@ pub(crate) fn iterate(
         // contraction: the stop needs the correction itself below the threshold (the step
         // is then a plain Picard step, whose error is below its correction for a
         // contraction under 1/2).
+        // A coarse level of nested iteration keeps the contraction bound: it stops on a
+        // fraction of its first update, and a level one Newton step shorter predicts the
+        // next one worse (folding_start: the fine level's first update doubled).
         let estimate = if params.anderson > 0 {
             history.last().map_or(f64::INFINITY, |h| h.update)
+        } else if relative_stop > 0.0 {
+            contraction_estimate(&history)
         } else {
             error_estimate(&history)
         };
@@ -505,32 +510,6 @@ pub(crate) fn info(
         coarse_steps: Vec::new(),
         history,
         first: None,
-    }
-}
-
-/// The relative linear tolerance of the next Picard step: `linear_tolerance` without forcing,
-/// else `clamp(max(0.5 ρ, 0.5 tol / u), linear_tolerance, linear_forcing)` with ρ the last
-/// observed Picard contraction and u = ρ · (last update) the predicted next update: no more
-/// accurate than the Picard error, and no more than half the Picard tolerance in absolute
-/// terms (which also keeps the request above round-off near convergence). The stop test
-/// ([`error_estimate`]) counts the linear error η u of the last step, so a looser request can
-/// cost a step but never a wrong convergence claim; half (rather than a tenth, as measured
-/// before) saves the second cycle of the last step at 129³ (bench_volume: 85 → 77 WU).
-/// `linear_forcing` for the first two steps.
-pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
-    let (floor, cap) = (params.linear_tolerance, params.linear_forcing);
-    if cap <= floor {
-        return floor;
-    }
-    match history {
-        [.., a, b] if a.update > 0.0 && b.update > 0.0 => {
-            let rho = b.update / a.update;
-            let predicted = rho * b.update;
-            (0.5 * rho)
-                .max(0.5 * params.tolerance / predicted)
-                .clamp(floor, cap)
-        }
-        _ => cap,
     }
 }
 
@@ -599,59 +578,9 @@ fn step_record(
     Ok(step)
 }
 
-/// Steps over which [`error_estimate`] also measures the mean contraction (longer than the
-/// ~14-step period of the update norms of the damped periodic iteration).
-const CONTRACTION_WINDOW: usize = 20;
-
-/// The Picard error after the steps of `history` (relative to the diameter): the last update
-/// u, or, once the iteration contracts, the a-posteriori bound of a contraction ρ/(1 − ρ) u plus
-/// the error η u of the inexact step (η its largest relative linear residual). ρ is the larger
-/// of the last two ratios of successive updates (one ratio alone is not enough: after a nested
-/// prediction the first step removes the prolongation error, and the ratio of the next update
-/// to it says nothing of the Picard contraction — measured: an estimate of 1e-10 for a true
-/// error of 8e-10) and of the mean ratio over the last [`CONTRACTION_WINDOW`] steps after the
-/// first two (update norms that oscillate, as in the damped steps of a periodic block, can
-/// grow for a step while the error shrinks by ~0.85 per step: stopping on u alone there left
-/// the grid 7.7e-10 of the diameter off at the tolerance 1e-10). With the contraction of
-/// 0.01–0.04 seen after nested iteration the bound is below u and saves the last Picard step,
-/// whose update would only confirm it (from the third step on).
-pub(crate) fn error_estimate(history: &[PicardStep]) -> f64 {
-    let n = history.len();
-    let Some(b) = history.last() else {
-        return f64::INFINITY;
-    };
-    if n < 3 || history[n - 2].update <= 0.0 || history[n - 3].update <= 0.0 {
-        return b.update;
-    }
-    let (z, a) = (&history[n - 3], &history[n - 2]);
-    let short = (b.update / a.update).max(a.update / z.update);
-    let from = 2.max(n.saturating_sub(CONTRACTION_WINDOW + 1)).min(n - 3);
-    let steps = (n - 1 - from) as f64;
-    let mean = if history[from].update > 0.0 {
-        (b.update / history[from].update).powf(1.0 / steps)
-    } else {
-        f64::INFINITY
-    };
-    let rho = if short < 1.0 { short.max(mean) } else { mean };
-    if rho.is_nan() || rho >= 1.0 {
-        return b.update;
-    }
-    let eta = b.linear_residual.iter().copied().fold(0.0, f64::max);
-    let bound = b.update * (rho / (1.0 - rho) + eta);
-    if rho < 0.5 {
-        bound.min(b.update)
-    } else {
-        bound
-    }
-}
-
-/// The stopping threshold of the Picard iteration after the steps of `history`: the last
-/// update (relative to the diameter) must fall below the tolerance, or below
-/// `relative_stop` times the first update (a coarse level of nested iteration; 0 = off).
-fn stop_threshold(params: &PicardParams, history: &[PicardStep], relative_stop: f64) -> f64 {
-    let first = history.first().map_or(0.0, |h| h.update);
-    params.tolerance.max(relative_stop * first)
-}
+mod stop;
+use stop::{contraction_estimate, stop_threshold};
+pub(crate) use stop::{error_estimate, forcing};
 
 #[cfg(test)]
 mod tests;

@@ -14,9 +14,8 @@ pub struct EdgeFunctions {
     pub t_e2: Vec<f64>,
 }
 
-/// Normalized cumulative chord length of a point list, eqs. [30]–[38]: 0 at the first point,
-/// exactly 1 at the last.
-pub fn normalized_arclength<const D: usize>(pts: &[[f64; D]]) -> Vec<f64> {
+/// Cumulative chord length of a point list: 0 at the first point.
+pub fn chord_length<const D: usize>(pts: &[[f64; D]]) -> Vec<f64> {
     let mut s = Vec::with_capacity(pts.len());
     let mut acc = 0.0;
     s.push(0.0);
@@ -29,6 +28,14 @@ pub fn normalized_arclength<const D: usize>(pts: &[[f64; D]]) -> Vec<f64> {
             .sqrt();
         s.push(acc);
     }
+    s
+}
+
+/// Normalized cumulative chord length of a point list, eqs. [30]–[38]: 0 at the first point,
+/// exactly 1 at the last.
+pub fn normalized_arclength<const D: usize>(pts: &[[f64; D]]) -> Vec<f64> {
+    let mut s = chord_length(pts);
+    let acc = s.last().copied().unwrap_or(0.0);
     for v in s.iter_mut() {
         *v /= acc;
     }

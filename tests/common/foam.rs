@@ -120,3 +120,28 @@ pub fn block_skewness(g: &Grid3, limit: f64) -> (f64, String, usize) {
     }
     (worst, at, above)
 }
+
+/// checkMesh's aspect ratio of a cell (primitiveMeshTools::cellClosedness): with Σ|S| the sum
+/// over its faces of the area vectors' Cartesian components taken positive, the larger of
+/// max(Σ|S|) / min(Σ|S|) and (Σ|S|ₓ + Σ|S|ᵧ + Σ|S|_z) / (6 V^(2/3)); checkMesh reports
+/// "High aspect ratio cells" above 1000. Not invariant under rotation: an axis-aligned box
+/// a × b × c (a ≥ b ≥ c) gives a / c, the same box tilted gives less.
+pub fn foam_aspect_ratio(faces: &[[V3; 4]; 6]) -> f64 {
+    let geo: Vec<(V3, V3)> = faces.iter().map(foam_face).collect();
+    let sum_mag = geo.iter().map(|(_, a)| a.abs()).sum::<V3>();
+    let est = geo.iter().map(|(c, _)| c).sum::<V3>() / 6.0;
+    // (its sign is the block's handedness)
+    let vol = (geo.iter().map(|(c, a)| a.dot(&(c - est))).sum::<f64>() / 3.0).abs();
+    let cmpt = sum_mag.max() / (sum_mag.min() + 1e-150);
+    let hydraulic = sum_mag.sum() / (6.0 * vol.max(1e-150).powf(2.0 / 3.0));
+    cmpt.max(hydraulic)
+}
+
+/// A rotation-invariant aspect ratio of a cell: the largest over the smallest of the sums of
+/// the face areas |S| of its three pairs of opposite faces (a / c for a box a × b × c, a ≥ b
+/// ≥ c, however it is turned).
+pub fn face_pair_aspect_ratio(faces: &[[V3; 4]; 6]) -> f64 {
+    let pair = |d: usize| foam_face(&faces[2 * d]).1.norm() + foam_face(&faces[2 * d + 1]).1.norm();
+    let s = [pair(0), pair(1), pair(2)];
+    s.iter().copied().fold(0.0, f64::max) / s.iter().copied().fold(f64::INFINITY, f64::min)
+}

@@ -64,3 +64,72 @@ fn a_fast_contraction_saves_the_confirming_step_and_growth_falls_back_to_the_upd
     let h = history(0.01, 2, 0.0);
     assert_eq!(error_estimate(&h), h.last().unwrap().update);
 }
+
+/// Newton steps whose updates fall quadratically, u_{k+1} = K u_k² + η u_k.
+fn newton_history(k: f64, eta: f64, steps: usize) -> Vec<PicardStep> {
+    let mut u = 0.3 / k;
+    (0..steps)
+        .map(|_| {
+            let h = PicardStep {
+                update: u,
+                residual: 0.0,
+                linear_iterations: vec![2],
+                linear_residual: vec![eta],
+                newton: true,
+            };
+            u = k * u * u + eta * u;
+            h
+        })
+        .collect()
+}
+
+#[test]
+fn quadratic_newton_updates_are_judged_by_their_quadratic_bound() {
+    for (k, eta) in [(30.0, 1e-3), (300.0, 1e-4), (5.0, 1e-2)] {
+        let h = newton_history(k, eta, 8);
+        for n in 3..8 {
+            if h[n - 1].update < 1e-14 {
+                break;
+            }
+            let est = error_estimate(&h[..n]);
+            // the remaining error: the updates still to come
+            let rest: f64 = newton_history(k, eta, 12)[n..]
+                .iter()
+                .map(|s| s.update)
+                .sum();
+            assert!(est >= rest, "K {k} η {eta}, {n} steps: {est:e} < {rest:e}");
+            // below the contraction bound once the steps accelerate (that is what saves a step)
+            let contraction = contraction_estimate(&h[..n]);
+            assert!(est <= contraction, "{est:e} > {contraction:e}");
+        }
+    }
+    // On the NACA0012 O-grid's step-1 history (4 × 257², upper_fore) the bound stops after
+    // step 4, where the contraction bound asked for a fifth step (whose update was 2.3e-11).
+    let steps = [
+        (8.613e-3, 6.25e-2),
+        (2.474e-3, 3.84e-2),
+        (3.077e-5, 8.29e-3),
+        (3.214e-7, 9.30e-5),
+    ];
+    let h: Vec<PicardStep> = steps
+        .iter()
+        .map(|&(update, eta)| PicardStep {
+            update,
+            residual: 0.0,
+            linear_iterations: vec![2],
+            linear_residual: vec![eta],
+            newton: true,
+        })
+        .collect();
+    assert!(error_estimate(&h) < 1e-10 && contraction_estimate(&h) > 1e-10);
+    assert!(error_estimate(&h) > 2.3e-11);
+    // Picard steps with the same updates keep the contraction bound.
+    let picard: Vec<PicardStep> = h
+        .iter()
+        .map(|s| PicardStep {
+            newton: false,
+            ..s.clone()
+        })
+        .collect();
+    assert_eq!(error_estimate(&picard), contraction_estimate(&picard));
+}

@@ -71,6 +71,13 @@ impl YLineOp {
         self.cp.resize(n, 0.0);
     }
 
+    /// `n` zero rows, the buffers' capacity kept ([`super::setup::Hierarchy::recycled`]).
+    pub(super) fn zeroed(&mut self, n: usize) {
+        self.op.clear();
+        self.cp.clear();
+        self.resize(n);
+    }
+
     pub(super) fn is_empty(&self) -> bool {
         self.op.is_empty()
     }

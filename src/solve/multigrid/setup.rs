@@ -67,44 +67,34 @@ pub(super) fn level_sizes(nx: usize, ny: usize, params: &MgParams) -> Vec<(usize
 }
 
 impl Hierarchy {
-    /// Allocates the hierarchy for `nx × ny` (no values yet).
-    pub(super) fn new(nx: usize, ny: usize, params: &MgParams) -> Self {
+    /// Allocates the hierarchy for `nx × ny` (no values yet) in the buffers of `spare` (an old
+    /// hierarchy's levels, fine first; empty for new ones): level l reuses the vectors of old
+    /// level l, zeroed and resized (no new mapping where their capacity suffices; the memory
+    /// held is at most the largest hierarchy's).
+    pub(super) fn recycled(nx: usize, ny: usize, params: &MgParams, spare: Vec<Level>) -> Self {
         let sizes = level_sizes(nx, ny, params);
         let nl = sizes.len();
+        let mut spare = spare.into_iter();
         let levels = sizes
             .iter()
             .enumerate()
             .map(|(l, &(nx, ny))| {
                 let coarsest = l + 1 == nl;
                 let nc = if coarsest { 0 } else { (nx / 2) * (ny / 2) };
-                let mut lev = Level {
-                    nx,
-                    ny,
-                    // level 0's operator is loaded or taken over at each setup
-                    a: if l == 0 {
-                        Vec::new()
-                    } else {
-                        vec![[0.0; 9]; nx * ny]
-                    },
-                    p: vec![[0.0; 9]; nc],
-                    // R = Pᵀ is read from p (interp::restriction)
-                    r: if params.restriction == Restriction::Transpose {
-                        Vec::new()
-                    } else {
-                        vec![[0.0; 9]; nc]
-                    },
-                    ..Default::default()
-                };
-                if !coarsest {
-                    if params.smoother.uses_x() {
-                        lev.xop.resize(nx * ny, [0.0; 2]);
-                    }
-                    if params.smoother.uses_y() && params.lean_y_lines {
-                        lev.ycp.resize(nx * ny, 0.0);
-                    } else if params.smoother.uses_y() {
-                        lev.yop.resize(nx * ny);
-                    }
-                }
+                let (uses_x, uses_y) = (params.smoother.uses_x(), params.smoother.uses_y());
+                let lines = |used: bool| if used && !coarsest { nx * ny } else { 0 };
+                let mut lev = spare.next().unwrap_or_default();
+                lev.nx = nx;
+                lev.ny = ny;
+                // level 0's operator is loaded or taken over at each setup
+                zeroed(&mut lev.a, if l == 0 { 0 } else { nx * ny });
+                zeroed(&mut lev.p, nc);
+                // R = Pᵀ is read from p (interp::restriction)
+                let own_r = params.restriction != Restriction::Transpose;
+                zeroed(&mut lev.r, if own_r { nc } else { 0 });
+                zeroed(&mut lev.xop, lines(uses_x));
+                zeroed(&mut lev.ycp, lines(uses_y && params.lean_y_lines));
+                lev.yop.zeroed(lines(uses_y && !params.lean_y_lines));
                 lev
             })
             .collect();
@@ -267,4 +257,10 @@ impl Smoother {
     pub(super) fn uses_y(self) -> bool {
         !matches!(self, Smoother::ZebraLineX)
     }
+}
+
+/// `v` cleared and refilled with `n` default values (its capacity kept).
+fn zeroed<T: Copy + Default>(v: &mut Vec<T>, n: usize) {
+    v.clear();
+    v.resize(n, T::default());
 }

@@ -410,6 +410,18 @@ fn setup_refresh_matches_fresh_solver() {
     let mut x3 = vec![0.0; 31 * 20];
     let b3 = vec![1.0; 31 * 20];
     assert!(reused.solve(&b3, &mut x3, &ctl).unwrap().converged);
+    // in the larger hierarchy's buffers (recycled, with their old values): the fresh solver's
+    // solution bit for bit, and so after growing back
+    let mut fresh3 = Multigrid::new(reused.params().clone());
+    fresh3.setup(&a3).unwrap();
+    let mut xf3 = vec![0.0; 31 * 20];
+    fresh3.solve(&b3, &mut xf3, &ctl).unwrap();
+    assert_eq!(x3, xf3);
+    reused.setup(&a2).unwrap();
+    let (mut xr, mut xf) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+    let ir = reused.solve(&b, &mut xr, &ctl).unwrap();
+    assert_eq!(ir, fresh.solve(&b, &mut xf, &ctl).unwrap());
+    assert_eq!(xr, xf);
 }
 
 /// `update` (fine level refreshed, coarse levels of the previous operator kept) solves the
