@@ -48,6 +48,9 @@ pub(super) fn pivot_error(i: usize, j: usize, piv: f64, dir: char) -> SolveError
 /// Rows of stencils.
 pub(super) type Stencils = [[f64; 9]];
 
+/// Storage of the line smoothers' factors (computed in f64, rounded to this type).
+pub(super) type Fac = f32;
+
 /// The y-line operator: per unknown, the stencil scaled by the inverse Thomas pivot of its
 /// column's tridiagonal system `(a_S, a_C, a_N)`, `op = [SW, S, SE, W]·inv, inv, [E, NW, NE]·inv`,
 /// and the modified upper coefficient `cp = a_N·inv` (kept apart: the back substitution reads
@@ -58,8 +61,8 @@ pub(super) type Stencils = [[f64; 9]];
 /// by row. A block occupies `[i0 ny, i1 ny)`.
 #[derive(Clone, Debug, Default)]
 pub(super) struct YLineOp {
-    pub op: Vec<[f32; 8]>,
-    pub cp: Vec<f32>,
+    pub op: Vec<[Fac; 8]>,
+    pub cp: Vec<Fac>,
 }
 
 impl YLineOp {
@@ -104,12 +107,12 @@ impl YLineOp {
 fn for_blocks<T: std::iter::Sum<T> + Send>(
     nx: usize,
     ny: usize,
-    op: &[[f32; 8]],
-    cp: &[f32],
-    f: impl Fn(usize, usize, &[[f32; 8]], &[f32]) -> T + Sync + Send,
+    op: &[[Fac; 8]],
+    cp: &[Fac],
+    f: impl Fn(usize, usize, &[[Fac; 8]], &[Fac]) -> T + Sync + Send,
 ) -> T {
     let chunk = YLineOp::W * ny;
-    let g = |(b, (op, cp)): (usize, (&[[f32; 8]], &[f32]))| {
+    let g = |(b, (op, cp)): (usize, (&[[Fac; 8]], &[Fac]))| {
         let i0 = b * YLineOp::W;
         f(i0, (i0 + YLineOp::W).min(nx), op, cp)
     };
@@ -138,7 +141,7 @@ pub(super) fn factor_y(
 ) -> Result<(), SolveError> {
     yop.resize(nx * ny);
     let chunk = YLineOp::W * ny;
-    let work = |(b, (op, cp)): (usize, (&mut [[f32; 8]], &mut [f32]))| {
+    let work = |(b, (op, cp)): (usize, (&mut [[Fac; 8]], &mut [Fac]))| {
         let i0 = b * YLineOp::W;
         let i1 = (i0 + YLineOp::W).min(nx);
         for colour in 0..2 {
@@ -158,20 +161,20 @@ pub(super) fn factor_y(
                     }
                     let v = 1.0 / piv;
                     let c = m[7] * v;
-                    if !(v as f32).is_finite() || !(c as f32).is_finite() {
+                    if !(v as Fac).is_finite() || !(c as Fac).is_finite() {
                         return Err(pivot_error(i, j, piv, 'y'));
                     }
                     op[q] = [
-                        (m[0] * v) as f32,
-                        (m[1] * v) as f32,
-                        (m[2] * v) as f32,
-                        (m[3] * v) as f32,
-                        v as f32,
-                        (m[5] * v) as f32,
-                        (m[6] * v) as f32,
-                        (m[8] * v) as f32,
+                        (m[0] * v) as Fac,
+                        (m[1] * v) as Fac,
+                        (m[2] * v) as Fac,
+                        (m[3] * v) as Fac,
+                        v as Fac,
+                        (m[5] * v) as Fac,
+                        (m[6] * v) as Fac,
+                        (m[8] * v) as Fac,
                     ];
-                    cp[q] = c as f32;
+                    cp[q] = c as Fac;
                 }
             }
         }

@@ -31,8 +31,10 @@ pub struct MultigridSafe {
     mg: Multigrid,
     /// Set once the cycles and their Bi-CGSTAB diverged: the LU from then on.
     direct: AtomicBool,
-    /// The LU factors of the current operator, made when first needed.
-    lu: Mutex<Option<DirectLu>>,
+    /// The LU of the operator, made when first needed, and whether it is the current
+    /// operator's (after an update it is refactored on the next direct solve, keeping the
+    /// symbolic factorization: the pattern is the same).
+    lu: Mutex<(Option<DirectLu>, bool)>,
 }
 
 impl std::fmt::Debug for MultigridSafe {
@@ -65,21 +67,31 @@ impl MultigridSafe {
     /// `x = A⁻¹ b` by the sparse LU of the fine operator (factored on the first call after
     /// each setup).
     fn solve_direct(&self, b: &[f64], x: &mut [f64]) -> Result<SolveInfo, SolveError> {
-        let mut lu = self.lu.lock().unwrap_or_else(|e| e.into_inner());
-        if lu.is_none() {
+        let mut guard = self.lu.lock().unwrap_or_else(|e| e.into_inner());
+        let (lu, current) = &mut *guard;
+        if lu.is_none() || !*current {
             let l0 = &self.mg.hierarchy()?.levels[0];
             let a = Stencil9::from_coefs(l0.nx, l0.ny, l0.a.clone());
-            let mut d = DirectLu::new();
-            d.setup(&a)?;
-            *lu = Some(d);
+            // refactored in place: the ordering (COLAMD) of the same pattern is kept
+            let d = lu.get_or_insert_with(DirectLu::new);
+            if let Err(e) = d.setup(&a) {
+                *lu = None;
+                return Err(e);
+            }
+            *current = true;
         }
         let d = lu.as_ref().expect("factored above");
         d.solve(b, x, &SolveControl::default())
     }
 
-    /// The operator changed: the old LU factors go.
+    /// The operator changed: the LU factors are stale (refactored when next needed; held
+    /// only once this solver has turned to the LU).
     fn forget_factors(&mut self) {
-        *self.lu.get_mut().unwrap_or_else(|e| e.into_inner()) = None;
+        let (lu, current) = self.lu.get_mut().unwrap_or_else(|e| e.into_inner());
+        *current = false;
+        if !self.direct.load(Ordering::Relaxed) {
+            *lu = None;
+        }
     }
 
     /// A solver with multigrid parameters `params` (see [`Multigrid::new`]).
@@ -236,6 +248,20 @@ mod tests {
         safe.setup(&id).unwrap();
         safe.solve(&b, &mut y, &SolveControl::default()).unwrap();
         assert!(y.iter().zip(&b).all(|(u, v)| (u - v).abs() < 1e-14));
+        // an update of the values (the pattern kept: refactored in place, the ordering
+        // reused): twice the Helmholtz operator solves to half the first solution
+        let mut twice = a.clone();
+        for row in twice.coefs_mut() {
+            row.iter_mut().for_each(|c| *c *= 2.0);
+        }
+        safe.update(&twice).unwrap();
+        safe.solve(&b, &mut y, &SolveControl::default()).unwrap();
+        let off = y
+            .iter()
+            .zip(&x)
+            .map(|(u, v)| (u - 0.5 * v).abs())
+            .fold(0.0, f64::max);
+        assert!(off < 1e-10, "{off:e}");
     }
 
     #[test]

@@ -7,7 +7,7 @@
 use crate::solve::multigrid::coarse::BandLu;
 use crate::solve::multigrid::interp::{build_transfer, restriction};
 use crate::solve::multigrid::rap::galerkin;
-use crate::solve::multigrid::relax::{factor_y, YLineOp};
+use crate::solve::multigrid::relax::{factor_y, Fac, YLineOp};
 use crate::solve::multigrid::xline::factor_x;
 use crate::solve::multigrid::yline;
 use crate::solve::multigrid::{MgParams, Restriction, Smoother};
@@ -25,7 +25,7 @@ pub(super) struct Level {
     /// x-line factors and y-line operator of the smoother (see `relax.rs`; empty if the
     /// smoother does not use them, and on the coarsest level), or with lean y-lines their
     /// factors `ycp` instead of `yop` (see `yline.rs`).
-    pub xop: Vec<[f32; 2]>,
+    pub xop: Vec<[Fac; 2]>,
     pub yop: YLineOp,
     pub ycp: Vec<f64>,
     /// Prolongation and restriction stars to the next coarser level (one per coarse point;

@@ -3,7 +3,7 @@
 //! ([`xzebra`]) that solves the lines of one colour, two at a time ([`xlines`]). Vectors are
 //! padded as in `relax`.
 
-use super::relax::{pad, padded_len, pivot_error, Stencils};
+use super::relax::{pad, padded_len, pivot_error, Fac, Stencils};
 use crate::solve::multigrid::{use_par, SharedPtr};
 use crate::solve::SolveError;
 use rayon::prelude::*;
@@ -18,10 +18,10 @@ pub(super) fn factor_x(
     a: &[[f64; 9]],
     nx: usize,
     ny: usize,
-    xop: &mut Vec<[f32; 2]>,
+    xop: &mut Vec<[Fac; 2]>,
 ) -> Result<(), SolveError> {
     xop.resize(nx * ny, [0.0; 2]);
-    let work = |(j, (op, a)): (usize, (&mut [[f32; 2]], &Stencils))| {
+    let work = |(j, (op, a)): (usize, (&mut [[Fac; 2]], &Stencils))| {
         let mut cprev = 0.0;
         for i in 0..nx {
             let m = &a[i];
@@ -31,10 +31,10 @@ pub(super) fn factor_x(
             }
             let v = 1.0 / piv;
             let c = m[5] * v;
-            if !(v as f32).is_finite() || !(c as f32).is_finite() {
+            if !(v as Fac).is_finite() || !(c as Fac).is_finite() {
                 return Err(pivot_error(i, j, piv, 'x'));
             }
-            op[i] = [v as f32, c as f32];
+            op[i] = [v as Fac, c as Fac];
             // the next pivot from the stored (rounded) factor: the Thomas factorization of
             // the tridiagonal system the sweep solves
             cprev = f64::from(op[i][1]);
@@ -67,7 +67,7 @@ pub(super) fn factor_x(
 #[inline]
 unsafe fn xlines<const N: usize>(
     a: &[[f64; 9]],
-    fac: &[[f32; 2]],
+    fac: &[[Fac; 2]],
     b: &[f64],
     x: *mut f64,
     nx: usize,
@@ -80,7 +80,7 @@ unsafe fn xlines<const N: usize>(
     let c: [&mut [f64]; N] =
         std::array::from_fn(|l| std::slice::from_raw_parts_mut(x.add(2 * l * nx), nx));
     let a: [&[[f64; 9]]; N] = std::array::from_fn(|l| &a[row(l)]);
-    let f: [&[[f32; 2]]; N] = std::array::from_fn(|l| &fac[row(l)]);
+    let f: [&[[Fac; 2]]; N] = std::array::from_fn(|l| &fac[row(l)]);
     let b: [&[f64]; N] = std::array::from_fn(|l| &b[row(l)]);
     if nx == 1 {
         for l in 0..N {
@@ -138,7 +138,7 @@ unsafe fn xlines<const N: usize>(
 #[allow(clippy::too_many_arguments)]
 pub(super) fn xzebra(
     a: &[[f64; 9]],
-    xop: &[[f32; 2]],
+    xop: &[[Fac; 2]],
     nx: usize,
     ny: usize,
     x: &mut [f64],
