@@ -53,6 +53,33 @@ impl Workspace {
         }
     }
 
+    /// Resizes this workspace for `h` in its own buffers (zeroed): the sizes change with every
+    /// level of nested iteration, and buffers allocated afresh are mapped and cleared again by
+    /// the kernel (as [`Hierarchy::recycled`] for the hierarchy's own).
+    pub(super) fn refit(&mut self, h: &Hierarchy) {
+        let fit = |v: &mut Vec<f64>, len: usize| {
+            v.clear();
+            v.resize(len, 0.0);
+        };
+        self.lv.truncate(h.levels.len());
+        for (k, l) in h.levels.iter().enumerate() {
+            let len = padded_len(l.nx, l.ny);
+            match self.lv.get_mut(k) {
+                Some(v) => {
+                    fit(&mut v.x, len);
+                    fit(&mut v.b, len);
+                    fit(&mut v.r, len);
+                }
+                None => self.lv.push(LevelVecs {
+                    x: vec![0.0; len],
+                    b: vec![0.0; len],
+                    r: vec![0.0; len],
+                }),
+            }
+        }
+        fit(&mut self.band, h.lu.scratch_len());
+    }
+
     /// True if this workspace was made for a hierarchy of the same sizes.
     pub(super) fn fits(&self, h: &Hierarchy) -> bool {
         self.lv.len() == h.levels.len()

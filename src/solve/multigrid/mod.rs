@@ -221,6 +221,27 @@ impl<W> Pool<W> {
         new()
     }
 
+    /// A kept workspace, refitted by `refit` if it does not `fits` (its buffers reused), or
+    /// `new()` if none is kept.
+    pub(crate) fn take_refit(
+        &self,
+        fits: impl Fn(&W) -> bool,
+        refit: impl FnOnce(&mut W),
+        new: impl FnOnce() -> W,
+    ) -> W {
+        let mut pool = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        match pool.iter().rposition(&fits) {
+            Some(k) => pool.swap_remove(k),
+            None => match pool.pop() {
+                Some(mut ws) => {
+                    refit(&mut ws);
+                    ws
+                }
+                None => new(),
+            },
+        }
+    }
+
     /// Keeps `ws` for a later solve.
     pub(crate) fn put(&self, ws: W) {
         self.0.lock().unwrap_or_else(|e| e.into_inner()).push(ws);
@@ -329,7 +350,6 @@ impl Multigrid {
     /// NACA0012 O-grid at 4 × 257², in allocating a new hierarchy and the first touch of its buffers).
     fn reshape(&mut self, nx: usize, ny: usize) {
         let spare = self.h.take().map_or_else(Vec::new, |h| h.levels);
-        self.pool.clear();
         self.h = Some(Hierarchy::recycled(nx, ny, &self.params, spare));
     }
 
@@ -363,7 +383,8 @@ impl Multigrid {
     }
 
     fn take_workspace(&self, h: &Hierarchy) -> Workspace {
-        self.pool.take(|ws| ws.fits(h), || Workspace::new(h))
+        self.pool
+            .take_refit(|ws| ws.fits(h), |ws| ws.refit(h), || Workspace::new(h))
     }
 
     /// Solves as [`LinearSolver::solve`], the cycles' vectors taken from `pool` instead of
@@ -410,7 +431,7 @@ impl Multigrid {
         let l0 = &h.levels[0];
         let (nx, ny, n) = (l0.nx, l0.ny, l0.n());
         let pd = pad(nx);
-        let mut ws = pool.take(|ws| ws.fits(h), || Workspace::new(h));
+        let mut ws = pool.take_refit(|ws| ws.fits(h), |ws| ws.refit(h), || Workspace::new(h));
         let res = {
             let v = &mut ws.lv[0];
             v.b[pd..pd + n].copy_from_slice(b);

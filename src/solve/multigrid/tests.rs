@@ -410,8 +410,16 @@ fn setup_refresh_matches_fresh_solver() {
     let mut x3 = vec![0.0; 31 * 20];
     let b3 = vec![1.0; 31 * 20];
     assert!(reused.solve(&b3, &mut x3, &ctl).unwrap().converged);
-    // in the larger hierarchy's buffers (recycled, with their old values): the fresh solver's
-    // solution bit for bit, and so after growing back
+    // the cycle workspace was refitted, not allocated beside the old one
+    {
+        let kept = reused.pool.0.lock().unwrap();
+        assert_eq!(kept.len(), 1);
+        assert!(kept[0].fits(reused.hierarchy().unwrap()));
+        // (its fine vectors hold the larger size's capacity)
+        assert!(kept[0].lv[0].x.capacity() >= nx * ny);
+    }
+    // in the larger hierarchy's and workspace's buffers (recycled, with their old values): the
+    // fresh solver's solution bit for bit, and so after growing back
     let mut fresh3 = Multigrid::new(reused.params().clone());
     fresh3.setup(&a3).unwrap();
     let mut xf3 = vec![0.0; 31 * 20];
