@@ -76,6 +76,10 @@ impl YLineOp {
 
     /// `n` zero rows, the buffers' capacity kept ([`super::setup::Hierarchy::recycled`]).
     pub(super) fn zeroed(&mut self, n: usize) {
+        if self.op.capacity() < n {
+            // freed before the new ones are allocated (a reallocation would hold both)
+            *self = YLineOp::default();
+        }
         self.op.clear();
         self.cp.clear();
         self.resize(n);
