@@ -68,15 +68,13 @@ pub(super) fn level_sizes(nx: usize, ny: usize, params: &MgParams) -> Vec<(usize
 
 impl Hierarchy {
     /// Allocates the hierarchy for `nx × ny` (no values yet) in the buffers of `spare` (an old
-    /// hierarchy's levels, fine first; empty for new ones), zeroed and resized (no new mapping
-    /// where their capacity suffices). The levels are matched from the coarsest: the next level
-    /// of nested iteration (one level more, each coarse level the old one's size) reuses every
-    /// old level as it is and allocates only its finest; old finest levels without a match go
-    /// first. The memory held is at most the largest hierarchy's.
+    /// hierarchy's levels, fine first; empty for new ones): level l reuses the vectors of old
+    /// level l, zeroed and resized (no new mapping where their capacity suffices; a buffer
+    /// too small is freed before its replacement is allocated). `Multigrid::reshape` passes
+    /// spare levels only for a size no larger than the old one's.
     pub(super) fn recycled(nx: usize, ny: usize, params: &MgParams, spare: Vec<Level>) -> Self {
         let sizes = level_sizes(nx, ny, params);
         let nl = sizes.len();
-        let fresh = 0;
         let mut spare = spare.into_iter();
         let levels = sizes
             .iter()
@@ -86,16 +84,11 @@ impl Hierarchy {
                 let nc = if coarsest { 0 } else { (nx / 2) * (ny / 2) };
                 let (uses_x, uses_y) = (params.smoother.uses_x(), params.smoother.uses_y());
                 let lines = |used: bool| if used && !coarsest { nx * ny } else { 0 };
-                let mut lev = if l < fresh {
-                    Level::default()
-                } else {
-                    spare.next().unwrap_or_default()
-                };
+                let mut lev = spare.next().unwrap_or_default();
                 lev.nx = nx;
                 lev.ny = ny;
                 // level 0's operator is loaded or taken over at each setup: its old buffer
-                // goes now, not held while the caller assembles the new one (curved 2049²:
-                // 301 → 296 bytes per node at the peak)
+                // goes now
                 if l == 0 {
                     lev.a = Vec::new();
                 } else {
