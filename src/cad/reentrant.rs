@@ -10,7 +10,9 @@
 //! - It is cut off by a straight (u, v) cut along the bisector of its interior angle to where
 //!   the ray first meets the boundary (both sides then have angles below 180° there); a cut
 //!   ending closer to a loop vertex than 15 % of its length ends at the vertex (no sliver of
-//!   a side). The cut must meet the loop, not an earlier cut, and cross nothing on its way.
+//!   a side). The cut must meet the loop, not an earlier cut, and cross nothing on its way;
+//!   where it does not, the ray is turned by up to 80 % of the way to where the angle on one
+//!   side would be 180°.
 //! - Each part is cut again at its own reentrant vertices, the sharpest first, until no part
 //!   has one inside its boundary's loop stretches (at most [`MAX_BLOCKS`] parts).
 //! - Each part is a block: its cut ends are corners (a cut is a whole side of both its blocks);
