@@ -10,7 +10,9 @@
 //! | `trim` | a face's boundary loop on its surface: (u, v) by projection, corners, four sides |
 //! | `face` | [`grid_face`]: any one-loop face as a block face (Section 2 in (u, v), then Section 4) |
 //! | `holes` | a face with holes split into blocks: one-hole strips, an O-type ring of four around each hole |
+//! | `reentrant` | [`grid_face_split`]: a one-loop face whose one block folds, cut at its reentrant vertices into blocks |
 //! | `band` | a closed band without a seam edge (two winding loops) split into four blocks |
+//! | `blocks` | a split face's blocks gridded as block faces (cuts sampled once, shared bit for bit) |
 //! | `split` | [`grid_face_blocks`]: any face as one block or several (cuts shared bit for bit) |
 //! | `write` | [`write_step_surface`]: one B-spline face bounded by its four iso-parameter sides |
 //! | `prescan` | bounds on the STEP text before truck-stepio expands it |
@@ -32,6 +34,10 @@
 //!   as a block face ([`grid_face_blocks`]): an O-type ring of four blocks around each hole
 //!   (the face first cut into one-hole strips between holes), or four blocks across a closed
 //!   band without a seam edge (two loops winding around a periodic surface).
+//!
+//! - a one-loop face whose one-block grid folds and whose loop turns outwards at vertices
+//!   (L-shaped plates, pockets, slots) is cut there by straight (u, v) cuts into blocks
+//!   ([`grid_face_split`]), gridded as a face with holes' blocks.
 //!
 //! A file with no face in any shell (OpenVSP writes its components as bare B-spline surfaces
 //! in `GEOMETRIC_SET`s) gives its B-spline and NURBS surfaces instead, each the whole surface
@@ -55,11 +61,13 @@
 //! ones exactly; a face with `same_sense = .F.` is read with u and v swapped.
 
 mod band;
+mod blocks;
 mod edge;
 mod face;
 mod holes;
 mod patch;
 mod prescan;
+mod reentrant;
 mod rewrite;
 mod split;
 mod trim;
@@ -68,6 +76,7 @@ mod write;
 
 pub use face::{grid_face, FaceGrid};
 pub use patch::grid_patch;
+pub use reentrant::{grid_face_split, MAX_BLOCKS};
 pub use split::grid_face_blocks;
 pub use write::write_step_surface;
 

@@ -90,6 +90,11 @@ struct GridArgs {
     /// per face, named `faceN` (`faceN.b0`, `faceN.b1`, … for a face of several blocks).
     #[arg(short, long = "output", value_name = "OUT", required = true)]
     output: Vec<PathBuf>,
+    /// Cut every one-loop face at its reentrant vertices (where the loop turns outwards by
+    /// more than 20°) into blocks, not only those whose one block folds (the face stays one
+    /// block where it cannot be cut or its blocks fold).
+    #[arg(long)]
+    cut_reentrant: bool,
     /// Write the grid even if it folds (the exit code is still 3).
     #[arg(long)]
     allow_folded: bool,
@@ -190,6 +195,15 @@ fn grid(a: &GridArgs) -> Result<()> {
             let r = solve::select::by_name(&a.linear)
                 .map_err(|m| Error::input("--linear", m))
                 .and_then(|mut solver| {
+                    if a.cut_reentrant && matches!(f.route(), Route::Trimmed(_)) {
+                        let s = solver.as_mut();
+                        let cut = cad::grid_face_split(f, (a.ni, a.nj), &di, &dj, s, &place);
+                        if let Ok(gs) = cut {
+                            if gs.iter().all(|g| !g.quality.is_folded()) {
+                                return Ok(gs);
+                            }
+                        }
+                    }
                     cad::grid_face_blocks(f, (a.ni, a.nj), &di, &dj, solver.as_mut(), &place)
                 });
             (*f, r)
