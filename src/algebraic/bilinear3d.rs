@@ -46,6 +46,13 @@ impl ParamGrid3 {
         self.dims
     }
 
+    /// The parameters (s, t, u) of a grid of `dims` nodes (i fastest).
+    pub(crate) fn from_parts(dims: [usize; 3], s: Vec<f64>, t: Vec<f64>, u: Vec<f64>) -> Self {
+        let n: usize = dims.iter().product();
+        assert!(s.len() == n && t.len() == n && u.len() == n);
+        ParamGrid3 { dims, s, t, u }
+    }
+
     /// (s, t, u) at node index p.
     #[inline]
     pub fn at(&self, p: usize) -> [f64; 3] {

@@ -13,15 +13,24 @@
 //! planar face (its edges in one plane to 1e-12 of its diameter) keeps its nodes in the plane:
 //! the solved face nodes are projected onto it (a sliding face).
 //!
+//! Between two volumes with their walls on one side of the strip, the strip can be solved
+//! with the volume wall correction instead ([`crate::elliptic::orthogonal3d`]): its wall the
+//! union of the two ([`Strip::wall_face`]), its goal columns the volumes' own
+//! ([`Strip::wall_targets`]), its algebraic map glued from theirs ([`Strip::glued_param`]);
+//! its control functions, carried back ([`Strip::volume_controls`]), make the volumes' grid
+//! systems the strip's.
+//!
 //! The job layer alternates these face solves with the volume solves (warm-started) until the
 //! largest move of a face node falls below the solve tolerance: an alternating Schwarz
 //! iteration whose overlap is the whole of both volumes, so that two volumes meeting at one
 //! floating face and nowhere else converge in one or two rounds.
 
+use crate::algebraic::bilinear3d::ParamGrid3;
 use crate::algebraic::control3d::{Control3, PAIRS};
 use crate::elliptic::picard::{PicardInfo, PicardParams};
 use crate::elliptic::poisson3d;
-use crate::grid::faces::normal;
+use crate::elliptic::wall::WallTargets;
+use crate::grid::faces::{block_node, face_dims, normal};
 use crate::grid::topology::volume::{FaceInterface, Topology3, VolumeSide};
 use crate::grid::Grid2;
 use crate::solve::stencil19::Stencil19;
@@ -216,6 +225,110 @@ impl Strip {
         moved
     }
 
+    /// The strip's face (0 … 5, F1 … F6 of the strip) that is wall face `walls[k]` of the
+    /// volume of side k on both sides (the union of two walls, e.g. the two wing volumes'
+    /// across the plane ahead of the leading edge), if the two volumes differ and both have
+    /// their wall on the same face of the strip.
+    pub fn wall_face(&self, walls: [Option<usize>; 2]) -> Option<usize> {
+        if self.sides[0].side.volume == self.sides[1].side.volume {
+            return None;
+        }
+        let mut out = None;
+        for (s, w) in self.sides.iter().zip(walls) {
+            let (d, lo) = normal(w?);
+            let a = (0..2).find(|&a| s.axes[a].0 == d)?;
+            // Strip index = volume index along d if the sign is positive (from the low end).
+            let f = 2 * a + usize::from(lo != (s.axes[a].1 > 0.0));
+            if out.is_some_and(|o| o != f) {
+                return None;
+            }
+            out = Some(f);
+        }
+        out
+    }
+
+    /// The goal columns of the strip's wall face `w` ([`Strip::wall_face`]) from its
+    /// volumes' wall targets `targets` (side A's, side B's): each column the goal of the
+    /// volume column it is.
+    pub fn wall_targets(
+        &self,
+        topo: &Topology3,
+        w: usize,
+        targets: [&WallTargets; 2],
+    ) -> WallTargets {
+        let m = self.dims[normal(w).0];
+        let [na, nb] = face_dims(w, self.dims);
+        let mut cols = Vec::with_capacity(na * nb * m);
+        for b in 0..nb {
+            for a in 0..na {
+                let [p, q, l] = block_node(w, a, b, self.dims);
+                let (k, n) = self.node(topo, p, q, l);
+                cols.extend((0..m).map(|j| targets[k].at(n, j)));
+            }
+        }
+        WallTargets::from_columns(w, self.dims, cols)
+    }
+
+    /// The strip's algebraic parameters glued from its volumes' `params` (side A's, side
+    /// B's): along p and q the volumes' parameters of those axes (reflected where the axis
+    /// runs against the volume's), along l side A's on [0, 1/2] and side B's on [1/2, 1]
+    /// (the face at 1/2); on the face p and q are the mean of the two sides' one layer in.
+    pub fn glued_param(&self, topo: &Topology3, params: [&ParamGrid3; 2]) -> ParamGrid3 {
+        let [np, nq, nl] = self.dims;
+        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(np * nq * nl));
+        for l in 0..nl {
+            for q in 0..nq {
+                for p in 0..np {
+                    let (k, [i, j, kk]) = self.node(topo, p, q, l);
+                    let s = &self.sides[k];
+                    let [ni, nj, _] = topo.volumes[s.side.volume].dims;
+                    let v = params[k].at(i + ni * (j + nj * kk));
+                    for (a, o) in out.iter_mut().enumerate() {
+                        let (d, sign) = s.axes[a];
+                        let x = if sign > 0.0 { v[d] } else { 1.0 - v[d] };
+                        o.push(if a < 2 { x } else { 0.5 * (k as f64 + x) });
+                    }
+                }
+            }
+        }
+        // At the face, p and q as the mean of the two sides' one layer in: each volume's
+        // corrections shifted its parameters next to the face but not on it.
+        let la = self.face_layer();
+        for o in out.iter_mut().take(2) {
+            for q in 1..nq - 1 {
+                for p in 1..np - 1 {
+                    let n = p + np * (q + nq * la);
+                    o[n] = 0.5 * (o[n - np * nq] + o[n + np * nq]);
+                }
+            }
+        }
+        let [s, t, u] = out;
+        ParamGrid3::from_parts(self.dims, s, t, u)
+    }
+
+    /// The strip's control functions `ctrl` carried back to the volumes of sides A and B
+    /// (stored; each volume's interior nodes are interior nodes of the strip off the face
+    /// layer, and with these controls the volume's grid system is the strip's there). For two
+    /// different volumes ([`Strip::wall_face`]).
+    pub fn volume_controls(&self, topo: &Topology3, ctrl: &Control3) -> [Control3; 2] {
+        let [np, nq, nl] = self.dims;
+        let la = self.face_layer();
+        let vdims = self.sides.map(|s| topo.volumes[s.side.volume].dims);
+        let mut out = vdims.map(|d| vec![[0.0; 18]; d.iter().product()]);
+        let back = self.sides.map(|s| inverse(s.axes));
+        for l in (1..nl - 1).filter(|&l| l != la) {
+            for q in 1..nq - 1 {
+                for p in 1..np - 1 {
+                    let (k, [i, j, kk]) = self.node(topo, p, q, l);
+                    let [ni, nj, _] = vdims[k];
+                    out[k][i + ni * (j + nj * kk)] = carry(ctrl.at(p + np * (q + nq * l)), back[k]);
+                }
+            }
+        }
+        let [a, b] = out;
+        [Control3::stored(vdims[0], a), Control3::stored(vdims[1], b)]
+    }
+
     /// The face this strip crosses.
     pub fn face(&self) -> usize {
         self.face
@@ -244,6 +357,17 @@ fn carry(p: [f64; 18], axes: [(usize, f64); 3]) -> [f64; 18] {
         for (c, &(vc, sc)) in axes.iter().enumerate() {
             out[3 * m + c] = sa * sb * sc * p[3 * mv + vc];
         }
+    }
+    out
+}
+
+/// The inverse of a signed axis permutation (strip axis a is volume axis π(a) with sign s_a):
+/// volume axis v is strip axis π⁻¹(v) with the same sign, so that [`carry`] with it undoes
+/// [`carry`] with `axes`.
+fn inverse(axes: [(usize, f64); 3]) -> [(usize, f64); 3] {
+    let mut out = [(0, 1.0); 3];
+    for (a, &(v, s)) in axes.iter().enumerate() {
+        out[v] = (a, s);
     }
     out
 }
@@ -325,6 +449,18 @@ mod tests {
         assert_eq!(q[3 + 2], -p[7]);
         // P'^q_ll = P^i_jj = P[3·3 + 0]
         assert_eq!(q[15 + 1], p[9]);
+    }
+
+    #[test]
+    fn carrying_back_undoes_carrying() {
+        let p: [f64; 18] = std::array::from_fn(|m| (m * m) as f64 - 3.5);
+        for axes in [
+            [(2, -1.0), (0, 1.0), (1, 1.0)],
+            [(1, 1.0), (2, -1.0), (0, -1.0)],
+            [(0, -1.0), (1, 1.0), (2, 1.0)],
+        ] {
+            assert_eq!(carry(carry(p, axes), inverse(axes)), p);
+        }
     }
 
     #[test]

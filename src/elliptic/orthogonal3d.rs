@@ -71,7 +71,7 @@ pub fn grid_volume_corrected(
 }
 
 /// [`grid_volume_corrected`], also returning the control functions of the final solve (those
-/// of the corrected algebraic map): the grid is the solution of [86] with them.
+/// of the corrected algebraic map: the grid is the solution of [86] with them) and that map.
 #[allow(clippy::too_many_arguments)]
 pub fn grid_volume_corrected_with(
     faces: &Faces,
@@ -81,13 +81,49 @@ pub fn grid_volume_corrected_with(
     params: &PicardParams,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
-) -> Result<(VolumeResult, Control3)> {
+) -> Result<(VolumeResult, Control3, ParamGrid3)> {
     let targets = c
         .wall
         .map(|w| WallTargets::with_profiles(faces, w, c.profiles, place))
         .transpose()?;
+    let map = AlgebraicMap {
+        param: bilinear(&edge_functions(faces), place)?,
+        controls: &Control3::from_algebraic,
+    };
+    grid_volume_corrected_to(
+        faces, c, targets, map, start, solver, params, place, progress,
+    )
+}
+
+/// The algebraic map S a block's passes correct and how its control functions follow from
+/// it: a volume's own ([`bilinear`] of its edge functions, [`Control3::from_algebraic`]), or
+/// the strip across a floating face glued from its volumes' maps, its controls at the face
+/// the mean of the two sides' ([`crate::elliptic::floating3d`]).
+pub struct AlgebraicMap<'a> {
+    pub param: ParamGrid3,
+    pub controls: &'a dyn Fn(&ParamGrid3) -> Control3,
+}
+
+/// [`grid_volume_corrected_with`] with the wall's goal columns given (`targets`, for
+/// `c.wall`) instead of taken from the faces: the strip across a floating face between two
+/// wall volumes holds its volumes' goals ([`crate::elliptic::floating3d`]).
+#[allow(clippy::too_many_arguments)]
+pub fn grid_volume_corrected_to(
+    faces: &Faces,
+    c: &FaceCorrections,
+    targets: Option<WallTargets>,
+    map: AlgebraicMap,
+    start: Option<Grid3>,
+    solver: &mut dyn LinearSolver<Stencil19>,
+    params: &PicardParams,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<(VolumeResult, Control3, ParamGrid3)> {
     let ortho: Vec<usize> = (0..6).filter(|&f| c.orthogonal[f]).collect();
-    let mut pg = bilinear(&edge_functions(faces), place)?;
+    let AlgebraicMap {
+        param: mut pg,
+        controls,
+    } = map;
     // Intermediate solves only need the near-face positions to well under the tolerances.
     let loose = PicardParams {
         tolerance: params.tolerance.max(LOOSE_TOLERANCE),
@@ -99,7 +135,7 @@ pub fn grid_volume_corrected_with(
         Some(g) if g.dims() == faces.dims() => {
             let mut x = g;
             faces.apply_to(&mut x);
-            let ctrl = Control3::from_algebraic(&pg);
+            let ctrl = controls(&pg);
             append(
                 &mut info,
                 poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)?,
@@ -133,7 +169,7 @@ pub fn grid_volume_corrected_with(
             Err(_) => {
                 let mut x = transfinite(faces);
                 faces.apply_to(&mut x);
-                let ctrl = Control3::from_algebraic(&pg);
+                let ctrl = controls(&pg);
                 append(
                     &mut info,
                     poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)?,
@@ -143,12 +179,14 @@ pub fn grid_volume_corrected_with(
         },
     };
     if !c.any() {
+        let ctrl = controls(&pg);
         return Ok((
             VolumeResult {
                 grid: x,
                 picard: info.expect("one solve"),
             },
-            Control3::from_algebraic(&pg),
+            ctrl,
+            pg,
         ));
     }
     let mut goal = Vec::new();
@@ -202,7 +240,7 @@ pub fn grid_volume_corrected_with(
         }
         if done || last {
             // A final solve to the asked tolerance from the current grid.
-            let ctrl = Control3::from_algebraic(&pg);
+            let ctrl = controls(&pg);
             let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress);
             let fine = step.is_ok() && (ortho.is_empty() || score(&x).0 == 0);
             let (bpg, bx) = match (step, best.take()) {
@@ -219,7 +257,7 @@ pub fn grid_volume_corrected_with(
             };
             // The orthogonal passes folded the grid: back to the best fold-free one.
             (pg, x) = (bpg, bx);
-            let ctrl = Control3::from_algebraic(&pg);
+            let ctrl = controls(&pg);
             append(
                 &mut info,
                 poisson3d::solve(&mut x, &ctrl, solver, params, place, progress)?,
@@ -229,7 +267,7 @@ pub fn grid_volume_corrected_with(
         // The pass's solve; if it fails (a remap from a folded or strongly oblique grid can
         // make the operator singular), the parameter update is halved up to DAMPINGS times.
         let mut attempt = |pg: &ParamGrid3, x: &mut Grid3| {
-            let ctrl = Control3::from_algebraic(pg);
+            let ctrl = controls(pg);
             if !ctrl.all_finite() {
                 let faces: Vec<&str> = ortho
                     .iter()
@@ -270,7 +308,7 @@ pub fn grid_volume_corrected_with(
                 // A failed orthogonal pass: finish from the best fold-free grid.
                 Some((_, bpg, bx)) => {
                     (pg, x) = (bpg, bx);
-                    let ctrl = Control3::from_algebraic(&pg);
+                    let ctrl = controls(&pg);
                     let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress)?;
                     append(&mut info, step);
                     break;
@@ -285,11 +323,13 @@ pub fn grid_volume_corrected_with(
             }
         }
     }
+    let ctrl = controls(&pg);
     Ok((
         VolumeResult {
             grid: x,
             picard: info.expect("at least one solve"),
         },
-        Control3::from_algebraic(&pg),
+        ctrl,
+        pg,
     ))
 }

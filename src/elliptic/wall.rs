@@ -207,6 +207,21 @@ impl WallTargets {
         Ok(t)
     }
 
+    /// Targets given column by column: `cols` holds, for each node of wall face `w` of a block
+    /// of `dims` nodes (face order), the goal distances of its `dims[normal]` column nodes
+    /// (the columns of a floating face's strip, gathered from its volumes' targets).
+    pub fn from_columns(w: usize, dims: [usize; 3], cols: Vec<f64>) -> Self {
+        let [na, nb] = face_dims(w, dims);
+        debug_assert_eq!(cols.len(), na * nb * dims[normal(w).0]);
+        WallTargets {
+            w,
+            dims,
+            weights: Vec::new(),
+            prof: std::array::from_fn(|_| Vec::new()),
+            cols,
+        }
+    }
+
     /// The target of the edges' bilinear interpolation (whatever the profiles).
     #[inline]
     pub(crate) fn edges_at(&self, n: [usize; 3], j: usize) -> f64 {

@@ -5,16 +5,31 @@
 //! its last grid) follow until the largest move of a face node in a round is below the solve
 //! tolerance, or [`MAX_ROUNDS`] rounds. A volume's report covers all its solves (seconds,
 //! Picard steps and history summed over the rounds).
+//!
+//! A face between two volumes whose walls lie on one face of the strip (the ONERA M6's plane
+//! ahead of the leading edge, between the two wing volumes) keeps the wall: its first strip
+//! solve is the volume wall correction on the strip as one block ([`walled_strip`]: the
+//! union of the two walls, the goal columns the volumes' own), and its control functions then
+//! serve the strip's later solves and, carried back, the two volumes' re-solves (whose grid
+//! system is then the strip's: they stay where the strip put them).
 
-use super::volume::{solve_volume_from, VolumeReport};
+use super::volume::{corrections, solve_volume_from, VolumeReport};
+use crate::algebraic::bilinear3d::{bilinear, ParamGrid3};
 use crate::algebraic::control3d::Control3;
+use crate::algebraic::flat_edge::edge_functions;
+use crate::case::volume::wall_face;
 use crate::case::LoadedCase;
 use crate::elliptic::floating3d::{Plane, Strip};
+use crate::elliptic::orthogonal3d::{grid_volume_corrected_to, AlgebraicMap, FaceCorrections};
+use crate::elliptic::picard::PicardInfo;
+use crate::elliptic::wall::WallTargets;
 use crate::grid::faces::Faces;
 use crate::grid::topology::volume::Topology3;
 use crate::grid::Grid2;
 use crate::io::Block;
 use crate::solve::select::for_block;
+use crate::solve::stencil19::Stencil19;
+use crate::solve::LinearSolver;
 use crate::{Error, Grid3, Result};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -40,8 +55,8 @@ pub struct FloatingHistory {
     pub seconds: f64,
 }
 
-/// A solved volume: name, grid, report, control functions.
-type Solved = (String, Block, VolumeReport, Control3);
+/// A solved volume: name, grid, report, control functions, the corrected algebraic map.
+type Solved = (String, Block, VolumeReport, Control3, Option<ParamGrid3>);
 
 /// The volumes (name, grid, report) and, per face of the topology, a floating face's history.
 pub type Floated = (
@@ -66,6 +81,18 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
         .iter()
         .map(|s| Plane::of_face(&grids[s.face()]))
         .collect();
+    // Per strip: its wall face if both volumes have their wall on one face of it, and the
+    // strip's control functions once its wall passes have run.
+    let walls: Vec<Option<usize>> = strips
+        .iter()
+        .map(|s| {
+            let w = s
+                .volumes()
+                .map(|v| wall_face(&case.case.volumes[v], &topo.volume_place(&file, v)).ok()?);
+            s.wall_face(w)
+        })
+        .collect();
+    let mut strip_ctrls: Vec<Option<Control3>> = vec![None; strips.len()];
     let mut hist: Vec<FloatingHistory> = planes
         .iter()
         .map(|p| FloatingHistory {
@@ -75,21 +102,37 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
         .collect();
     // The volumes' grids and control functions move from round to round (no copies: the
     // strip's operator is the largest thing alive during a round).
-    let (mut names, mut vols, mut reports, mut ctrls) =
-        unpack(solve_all(case, topo, grids, None, None)?);
+    let mut first = solve_all(case, topo, grids, None, None)?;
+    let maps = unpack_maps(&mut first);
+    let (mut names, mut vols, mut reports, mut ctrls) = unpack(first);
     for round in 1..=MAX_ROUNDS {
         let mut worst = 0.0f64;
-        for ((strip, plane), h) in strips.iter().zip(&planes).zip(hist.iter_mut()) {
+        for (n, ((strip, plane), h)) in strips.iter().zip(&planes).zip(&mut hist).enumerate() {
             let t0 = Instant::now();
             let f = strip.face();
             let place = topo.faces.block_place(&file, f);
-            let refs: Vec<&Control3> = ctrls.iter().collect();
-            let ctrl = strip.controls(topo, &refs);
             let linear = &case.case.volumes[strip.volumes()[0]].linear;
             let mut solver =
                 for_block(linear, strip.dims()).map_err(|m| Error::input(&place, m))?;
             let refs: Vec<&Grid3> = vols.iter().collect();
-            let (x, info) = strip.solve(topo, &refs, &ctrl, solver.as_mut(), params, &place)?;
+            let (x, info) = match (walls[n], &strip_ctrls[n]) {
+                (_, Some(ctrl)) => {
+                    strip.solve(topo, &refs, ctrl, solver.as_mut(), params, &place)?
+                }
+                (Some(w), None) => {
+                    let (x, info, ctrl) =
+                        walled_strip(case, topo, grids, strip, w, &refs, &maps, solver.as_mut())?;
+                    let [a, b] = strip.volumes();
+                    [ctrls[a], ctrls[b]] = strip.volume_controls(topo, &ctrl);
+                    strip_ctrls[n] = Some(ctrl);
+                    (x, info)
+                }
+                (None, None) => {
+                    let refs_c: Vec<&Control3> = ctrls.iter().collect();
+                    let ctrl = strip.controls(topo, &refs_c);
+                    strip.solve(topo, &refs, &ctrl, solver.as_mut(), params, &place)?
+                }
+            };
             if !info.converged {
                 let [a, b] = strip.volumes().map(|v| topo.volumes[v].name.as_str());
                 return Err(Error::input(
@@ -138,6 +181,68 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
     Ok((done, per_face))
 }
 
+/// The first solve of a strip across a face between two wall volumes: the strip as one
+/// block with the wall correction at its wall face `w` (the union of the two walls), the goal
+/// columns its volumes' ([`crate::elliptic::floating3d::Strip::wall_targets`]), from the
+/// volumes' grids. Returns the strip's grid, history and control functions.
+#[allow(clippy::too_many_arguments)]
+fn walled_strip(
+    case: &LoadedCase,
+    topo: &Topology3,
+    grids: &[Grid2<3>],
+    strip: &Strip,
+    w: usize,
+    vols: &[&Grid3],
+    maps: &[Option<ParamGrid3>],
+    solver: &mut dyn LinearSolver<Stencil19>,
+) -> Result<(Grid3, PicardInfo, Control3)> {
+    let file = case.path.display().to_string();
+    let place = topo.faces.block_place(&file, strip.face());
+    let mut orthogonal = false;
+    let mut targets = Vec::with_capacity(2);
+    let mut params = Vec::with_capacity(2);
+    for v in strip.volumes() {
+        let vplace = topo.volume_place(&file, v);
+        let spec = &case.case.volumes[v];
+        let vw = wall_face(spec, &vplace)?;
+        let c = corrections(spec, vw, &vplace)?;
+        let vw = vw.expect("both volumes have a wall (Strip::wall_face)");
+        orthogonal |= c.orthogonal[vw];
+        let faces = Faces::new(topo.volume_faces(v, grids), &vplace)?;
+        targets.push(WallTargets::with_profiles(&faces, vw, c.profiles, &vplace)?);
+        params.push(match &maps[v] {
+            Some(pg) => pg.clone(),
+            None => bilinear(&edge_functions(&faces), &vplace)?,
+        });
+    }
+    let goals = strip.wall_targets(topo, w, [&targets[0], &targets[1]]);
+    drop(targets);
+    let map = AlgebraicMap {
+        param: strip.glued_param(topo, [&params[0], &params[1]]),
+        controls: &Control3::from_algebraic,
+    };
+    drop(params);
+    let x = strip.gather(topo, vols);
+    let faces = Faces::from_grid(&x);
+    let mut c = FaceCorrections {
+        wall: Some(w),
+        ..Default::default()
+    };
+    c.orthogonal[w] = orthogonal;
+    let (r, ctrl, _) = grid_volume_corrected_to(
+        &faces,
+        &c,
+        Some(goals),
+        map,
+        Some(x),
+        solver,
+        &case.case.solver.picard,
+        &place,
+        &mut |_, _| {},
+    )?;
+    Ok((r.grid, r.picard, ctrl))
+}
+
 /// Solves every volume from the face grids, in parallel, from `starts` if given.
 fn solve_all(
     case: &LoadedCase,
@@ -182,9 +287,14 @@ fn accumulate(new: &mut VolumeReport, old: &VolumeReport) {
 /// The volumes' names, grids, reports and control functions, moved out of their solves.
 type Unpacked = (Vec<String>, Vec<Grid3>, Vec<VolumeReport>, Vec<Control3>);
 
+/// The volumes' corrected algebraic maps (those with a wall or orthogonal faces).
+fn unpack_maps(solved: &mut [Solved]) -> Vec<Option<ParamGrid3>> {
+    solved.iter_mut().map(|s| s.4.take()).collect()
+}
+
 fn unpack(solved: Vec<Solved>) -> Unpacked {
     let mut out: Unpacked = Default::default();
-    for (name, block, rep, ctrl) in solved {
+    for (name, block, rep, ctrl, _) in solved {
         let Block::Volume(grid) = block else {
             unreachable!("volumes are volume blocks")
         };

@@ -1,6 +1,7 @@
 //! Runs of volume blocks: generation of a case's `[[volume]]` (with its wall spacing, if any),
 //! the transfinite start grid, and the regridding of volume blocks of existing grids.
 
+use crate::algebraic::bilinear3d::ParamGrid3;
 use crate::algebraic::control3d::{control_for, Control3};
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
@@ -71,12 +72,14 @@ pub(crate) fn solve_volume(
     place: &str,
     t0: Instant,
 ) -> Result<(String, Block, VolumeReport)> {
-    solve_volume_from(case, k, faces, None, None, place, t0).map(|(name, g, rep, _)| (name, g, rep))
+    solve_volume_from(case, k, faces, None, None, place, t0)
+        .map(|(name, g, rep, _, _)| (name, g, rep))
 }
 
 /// [`solve_volume`] from `start` (its boundary nodes replaced by the faces'), if given, also
 /// returning the control functions the grid solves [86] with (those of the corrected map when
-/// the volume has a wall or orthogonal faces). With `frozen` control functions, a start and
+/// the volume has a wall or orthogonal faces, and then the corrected algebraic map they come
+/// from, unless frozen). With `frozen` control functions, a start and
 /// corrections, one plain Picard solve with those controls instead of the correction passes
 /// (the corrections are in the controls).
 pub(crate) fn solve_volume_from(
@@ -87,7 +90,7 @@ pub(crate) fn solve_volume_from(
     frozen: Option<Control3>,
     place: &str,
     t0: Instant,
-) -> Result<(String, Block, VolumeReport, Control3)> {
+) -> Result<(String, Block, VolumeReport, Control3, Option<ParamGrid3>)> {
     let spec = &case.case;
     let v = &spec.volumes[k];
     let name = volume_name(case, k);
@@ -109,12 +112,14 @@ pub(crate) fn solve_volume_from(
         check_kind(spec.solver.control, place)?;
     }
     let frozen = frozen.filter(|_| c.any());
-    let (r, ctrl) = if let (Some(ctrl), Some(mut x)) = (frozen, start.clone()) {
+    let (r, ctrl, param) = if let (Some(ctrl), Some(mut x)) = (frozen, start.clone()) {
         faces.apply_to(&mut x);
         let picard = poisson3d::solve(&mut x, &ctrl, solver.as_mut(), params, place, &mut cb)?;
-        (VolumeResult { grid: x, picard }, ctrl)
+        (VolumeResult { grid: x, picard }, ctrl, None)
     } else if c.any() {
-        grid_volume_corrected_with(faces, &c, start, solver.as_mut(), params, place, &mut cb)?
+        let (r, ctrl, pg) =
+            grid_volume_corrected_with(faces, &c, start, solver.as_mut(), params, place, &mut cb)?;
+        (r, ctrl, Some(pg))
     } else {
         let r = grid_volume(
             faces,
@@ -125,7 +130,7 @@ pub(crate) fn solve_volume_from(
             place,
             &mut cb,
         )?;
-        (r, control_for(faces, spec.solver.control, place)?)
+        (r, control_for(faces, spec.solver.control, place)?, None)
     };
     if let Some(pb) = pb {
         pb.finish_and_clear();
@@ -146,7 +151,7 @@ pub(crate) fn solve_volume_from(
         quality: q,
         wall,
     };
-    Ok((name, Block::Volume(r.grid), rep, ctrl))
+    Ok((name, Block::Volume(r.grid), rep, ctrl, param))
 }
 
 /// The corrections a `[[volume]]` table asks for: the wall (`wall`, with `wall_orthogonal`,
