@@ -103,7 +103,14 @@ pub fn float(case: &LoadedCase, topo: &Topology3, grids: &mut [Grid2<3>]) -> Res
     // The volumes' grids and control functions move from round to round (no copies: the
     // strip's operator is the largest thing alive during a round).
     let mut first = solve_all(case, topo, grids, None, None)?;
-    let maps = unpack_maps(&mut first);
+    let mut maps = unpack_maps(&mut first);
+    // only the volumes of a walled strip need their corrected maps (~24 bytes per node each)
+    for (v, m) in maps.iter_mut().enumerate() {
+        let walled = |(s, w): (&Strip, &Option<usize>)| w.is_some() && s.volumes().contains(&v);
+        if !strips.iter().zip(&walls).any(walled) {
+            *m = None;
+        }
+    }
     let (mut names, mut vols, mut reports, mut ctrls) = unpack(first);
     for round in 1..=MAX_ROUNDS {
         let mut worst = 0.0f64;
