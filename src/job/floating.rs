@@ -8,7 +8,7 @@
 //!
 //! A face between two volumes whose walls lie on one face of the strip (the ONERA M6's plane
 //! ahead of the leading edge, between the two wing volumes) keeps the wall: its first strip
-//! solve is the volume wall correction on the strip as one block ([`walled_strip`]: the
+//! solve is the volume wall correction on the strip as one block (`walled_strip`: the
 //! union of the two walls, the goal columns the volumes' own), and its control functions then
 //! serve the strip's later solves and, carried back, the two volumes' re-solves (whose grid
 //! system is then the strip's: they stay where the strip put them).
