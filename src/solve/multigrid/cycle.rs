@@ -57,8 +57,8 @@ impl Workspace {
     /// level of nested iteration, and buffers allocated afresh are mapped and cleared again by
     /// the kernel (as [`Hierarchy::recycled`] for the hierarchy's own).
     pub(super) fn refit(&mut self, h: &Hierarchy) {
-        // a buffer too small goes before its replacement is allocated (a reallocation would
-        // hold both at once: 301 against 296 bytes per node at the peak of curved 2049²)
+        // a buffer too small goes before its replacement is allocated (a reallocation may
+        // hold both at once)
         let fit = |v: &mut Vec<f64>, len: usize| {
             if v.capacity() < len {
                 *v = Vec::new();

@@ -84,12 +84,14 @@ impl MultigridSafe {
         d.solve(b, x, &SolveControl::default())
     }
 
-    /// The operator changed: the LU factors are stale (refactored when next needed; held
-    /// only once this solver has turned to the LU).
-    fn forget_factors(&mut self) {
+    /// The operator changed to one of `n` unknowns: the LU factors are stale (refactored when
+    /// next needed; held only where the LU will solve it, so that a larger system solved by
+    /// the multigrid does not hold a smaller one's factors).
+    fn forget_factors(&mut self, n: usize) {
+        let keep = self.use_direct(n);
         let (lu, current) = self.lu.get_mut().unwrap_or_else(|e| e.into_inner());
         *current = false;
-        if !self.direct.load(Ordering::Relaxed) {
+        if !keep {
             *lu = None;
         }
     }
@@ -110,17 +112,17 @@ impl MultigridSafe {
 
 impl LinearSolver for MultigridSafe {
     fn setup(&mut self, a: &Stencil9) -> Result<(), SolveError> {
-        self.forget_factors();
+        self.forget_factors(a.len());
         self.mg.setup(a)
     }
 
     fn update(&mut self, a: &Stencil9) -> Result<(), SolveError> {
-        self.forget_factors();
+        self.forget_factors(a.len());
         self.mg.update(a)
     }
 
     fn adopt(&mut self, a: &mut Stencil9, small: bool) -> Result<(), SolveError> {
-        self.forget_factors();
+        self.forget_factors(a.len());
         self.mg.adopt(a, small)
     }
 
