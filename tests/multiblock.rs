@@ -369,9 +369,11 @@ fn the_rae2822_c_grid_example_runs_fold_free_with_a_matching_connectivity_file()
 
 #[test]
 fn the_nlr7301_flap_example_runs_fold_free_with_a_matching_connectivity_file() {
+    // 13 interfaces: the cuts from the cove entry's walls are split at the off-wall
+    // junctions p and q (cut_k1 | cut_k, cut_f1 | cut_f; 11 before, from k and f on the walls).
     let (r, blocks) = paper_example(
         "nlr7301_flap",
-        11,
+        13,
         19,
         &["main", "flap", "farfield", "outflow"],
     );
