@@ -83,6 +83,11 @@ impl FaceGrid {
 /// The grid of a face: `ni` nodes along its first and third sides, `nj` along the second and
 /// fourth, placed on each by `dist_i` / `dist_j` (lengths).
 ///
+/// A one-loop face is gridded on corners by turning angle ([`Corners::Turning`]); where every
+/// such try folds, on corner sets with balanced opposite sides ([`Corners::Balanced`]): the
+/// first of those that does not fold is the grid, else the first rule's result stands (a
+/// face that does not fold on its first corners is never regridded).
+///
 /// # Errors
 /// [`Error::Input`] at `place` with the reason if the face is refused ([`Route::Refused`]) or
 /// its boundary is unusable (edges off the surface or not meeting, a loop around the
@@ -223,6 +228,8 @@ fn trimmed(
     // whose corners and refinement are an earlier try's would repeat it exactly (that try
     // folded, or there would be no retry): it is left out (on the 40-file corpus the last
     // try's corners were the second's in every face that got there).
+    // With `sets` = Balanced the tries are instead the balanced corner sets (on the final
+    // grid's resolution), those equal to a try by turning left out.
     let lp = quietly(|| {
         FaceLoop::new(
             &surface,
