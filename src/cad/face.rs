@@ -83,6 +83,11 @@ impl FaceGrid {
 /// The grid of a face: `ni` nodes along its first and third sides, `nj` along the second and
 /// fourth, placed on each by `dist_i` / `dist_j` (lengths).
 ///
+/// A one-loop face is gridded on corners by turning angle ([`Corners::Turning`]); where every
+/// such try folds, on corner sets with balanced opposite sides ([`Corners::Balanced`]): the
+/// first of those that does not fold is the grid, else the first rule's result stands (a
+/// face that does not fold on its first corners is never regridded).
+///
 /// # Errors
 /// [`Error::Input`] at `place` with the reason if the face is refused ([`Route::Refused`]) or
 /// its boundary is unusable (edges off the surface or not meeting, a loop around the
@@ -94,6 +99,72 @@ pub fn grid_face(
     dist_j: &DistributionSpec,
     solver: &mut dyn LinearSolver,
     place: &str,
+) -> Result<FaceGrid> {
+    let one = grid_face_by(
+        face,
+        (ni, nj),
+        dist_i,
+        dist_j,
+        solver,
+        place,
+        Corners::Turning,
+    );
+    if !folds(&one) || !matches!(face.route(), Route::Trimmed(_)) {
+        return one;
+    }
+    let other = grid_face_by(
+        face,
+        (ni, nj),
+        dist_i,
+        dist_j,
+        solver,
+        place,
+        Corners::Balanced,
+    );
+    if folds(&other) || other.is_err() {
+        one
+    } else {
+        other
+    }
+}
+
+/// Whether a face's grid folds: a folded grid, or a (u, v) grid that folds.
+pub(super) fn folds(r: &Result<FaceGrid>) -> bool {
+    match r {
+        Ok(g) => g.quality.is_folded(),
+        Err(e) => matches!(e, Error::Folded { .. }),
+    }
+}
+
+/// Which corner sets [`grid_face_by`] tries on a one-loop face.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Corners {
+    /// Corners by turning angle ([`FaceLoop::corners`]), the tries of [`TRIES`]: the first
+    /// choice of every face.
+    Turning,
+    /// Corner sets with balanced opposite sides and corner angles near 90°
+    /// ([`FaceLoop::balanced_corners`]): the [`BALANCED`] cheapest that are no try of
+    /// [`Corners::Turning`], for faces whose grid folds with those.
+    Balanced,
+}
+
+/// Corner sets a face whose grid folds with its corners by turning angle tries at most
+/// ([`Corners::Balanced`]).
+pub const BALANCED: usize = 3;
+
+/// [`grid_face`] with the corner sets `corners` only (an untrimmed patch is gridded the same
+/// either way).
+///
+/// # Errors
+/// Those of [`grid_face`].
+pub fn grid_face_by(
+    face: &StepFace,
+    (ni, nj): (usize, usize),
+    dist_i: &DistributionSpec,
+    dist_j: &DistributionSpec,
+    solver: &mut dyn LinearSolver,
+    place: &str,
+    corners: Corners,
 ) -> Result<FaceGrid> {
     if ni < 3 || nj < 3 {
         return Err(Error::input(
@@ -118,7 +189,7 @@ pub fn grid_face(
             let result = super::grid_patch(s, (ni, nj), dist_i, dist_j, solver, place)?;
             Ok(FaceGrid::new(result, Vec::new(), 0.0, None))
         }
-        Route::Trimmed(_) => trimmed(face, (ni, nj), [dist_i, dist_j], solver, place),
+        Route::Trimmed(_) => trimmed(face, (ni, nj), [dist_i, dist_j], solver, place, corners),
     }
 }
 
@@ -138,6 +209,7 @@ fn trimmed(
     dist: [&DistributionSpec; 2],
     solver: &mut dyn LinearSolver,
     place: &str,
+    sets: Corners,
 ) -> Result<FaceGrid> {
     let surface = TruckSurface(face.cad_surface.clone());
     let edges = match &face.loops {
@@ -156,6 +228,8 @@ fn trimmed(
     // whose corners and refinement are an earlier try's would repeat it exactly (that try
     // folded, or there would be no retry): it is left out (on the 40-file corpus the last
     // try's corners were the second's in every face that got there).
+    // With `sets` = Balanced the tries are instead the balanced corner sets (on the final
+    // grid's resolution), those equal to a try by turning left out.
     let lp = quietly(|| {
         FaceLoop::new(
             &surface,
@@ -167,10 +241,36 @@ fn trimmed(
         .map_err(|m| Error::input(place, m))
     })
     .unwrap_or_else(|_| Err(truck_failed(place)))?;
-    let mut done: Vec<([LoopPoint; 4], usize)> = Vec::with_capacity(TRIES.len());
+    // Other corner sets ([`Corners::Balanced`]): the balanced sets that are no try by
+    // turning.
+    let others: Vec<([LoopPoint; 4], [f64; 4])> = match sets {
+        Corners::Turning => Vec::new(),
+        Corners::Balanced => quietly(|| {
+            let tried = TRIES.map(|(m, _)| lp.corners(m).0);
+            let mut b = lp.balanced_corners(BALANCED + TRIES.len());
+            b.retain(|c| !tried.contains(&c.0));
+            b.truncate(BALANCED);
+            b
+        })
+        .map_err(|_| truck_failed(place))?,
+    };
+    let count = match sets {
+        Corners::Turning => TRIES.len(),
+        Corners::Balanced => others.len(),
+    };
+    if count == 0 {
+        return Err(Error::input(place, "no other corner set on the loop"));
+    }
+    let mut done: Vec<([LoopPoint; 4], usize)> = Vec::with_capacity(count);
     let mut best: Option<Result<FaceGrid>> = None;
-    for (min_turn, refine) in TRIES {
-        let corners = quietly(|| lp.corners(min_turn)).map_err(|_| truck_failed(place))?;
+    for t in 0..count {
+        let (corners, refine) = match sets {
+            Corners::Turning => (
+                quietly(|| lp.corners(TRIES[t].0)).map_err(|_| truck_failed(place))?,
+                TRIES[t].1,
+            ),
+            Corners::Balanced => (others[t], 1),
+        };
         if done.contains(&(corners.0, refine)) {
             continue;
         }
@@ -199,7 +299,7 @@ fn trimmed(
             Some(_) => {}
         }
     }
-    best.expect("TRIES is not empty")
+    best.expect("at least one try")
 }
 
 /// The tries of [`trimmed`] in turn: (least turning of a convex vertex to be a corner

@@ -8,7 +8,7 @@
 
 use super::band::band;
 use super::blocks::grid_layout;
-use super::face::{bounds, gap_tolerance, FaceGrid};
+use super::face::{bounds, folds, gap_tolerance, grid_face_by, Corners, FaceGrid};
 use super::holes::layout;
 use super::reentrant::grid_face_split;
 use super::trim::{CadSurface, FaceLoop};
@@ -42,17 +42,19 @@ pub fn grid_face_blocks(
         // A one-loop face whose one block folds is cut at its reentrant vertices into
         // blocks, if that gives a grid that does not fold; faces that do not fold are
         // never cut.
-        let one = super::grid_face(face, (ni, nj), dist_i, dist_j, solver, place);
-        let folds = match &one {
-            Ok(g) => g.quality.is_folded(),
-            Err(e) => matches!(e, Error::Folded { .. }),
-        };
-        if folds {
+        let d = (dist_i, dist_j);
+        let one = grid_face_by(face, (ni, nj), d.0, d.1, solver, place, Corners::Turning);
+        if folds(&one) {
             let cut = grid_face_split(face, (ni, nj), dist_i, dist_j, solver, place);
             if let Ok(gs) = cut {
                 if gs.iter().all(|g| !g.quality.is_folded()) {
                     return Ok(gs);
                 }
+            }
+            // Neither the corners by turning angle nor the cut: one block with other corners.
+            let other = grid_face_by(face, (ni, nj), d.0, d.1, solver, place, Corners::Balanced);
+            if !folds(&other) && other.is_ok() {
+                return other.map(|g| vec![g]);
             }
         }
         return one.map(|g| vec![g]);

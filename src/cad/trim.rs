@@ -12,6 +12,7 @@ use pole::singular;
 use truck_geometry::prelude::{ParametricSurface, Point3, SearchNearestParameter, D2};
 use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 
+mod balance;
 mod pole;
 
 /// A CAD surface in its own parameters.
