@@ -139,11 +139,11 @@ pub(super) fn folds(r: &Result<FaceGrid>) -> bool {
 /// Which corner sets [`grid_face_by`] tries on a one-loop face.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Corners {
-    /// Corners by turning angle ([`FaceLoop::corners`]), the tries of [`TRIES`]: the first
-    /// choice of every face.
+    /// Corners by turning angle (the loop's most-turning vertices, with the tries of the
+    /// corner rules): the first choice of every face.
     Turning,
     /// Corner sets with balanced opposite sides and corner angles near 90°
-    /// ([`FaceLoop::balanced_corners`]): the [`BALANCED`] cheapest that are no try of
+    /// (`FaceLoop::balanced_corners`): the [`BALANCED`] cheapest that are no try of
     /// [`Corners::Turning`], for faces whose grid folds with those.
     Balanced,
 }
