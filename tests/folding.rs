@@ -140,3 +140,102 @@ fn the_dented_square_folds_at_the_start_and_not_at_the_end() {
         Some(9266)
     );
 }
+
+/// `m` points along the polyline `p`, equally spaced in arclength.
+fn resample(p: &[[f64; 2]], m: usize) -> Vec<[f64; 2]> {
+    let mut s = vec![0.0];
+    for w in p.windows(2) {
+        s.push(s.last().unwrap() + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
+    }
+    let total = *s.last().unwrap();
+    let mut k = 0;
+    (0..m)
+        .map(|q| {
+            let t = total * q as f64 / (m - 1) as f64;
+            while k + 2 < s.len() && s[k + 1] < t {
+                k += 1;
+            }
+            let f = ((t - s[k]) / (s[k + 1] - s[k])).clamp(0.0, 1.0);
+            [0, 1].map(|c| p[k][c] + f * (p[k + 1][c] - p[k][c]))
+        })
+        .collect()
+}
+
+/// The dented top edge of `bench_memory`'s `dented:N` case: a mushroom with a square cap
+/// (stem 0.1 wide down to y = 0.55, cap 0.5 wide down to 0.3), its corners rounded by three
+/// moving averages over ~0.03 of arclength, `n` nodes equally spaced in arclength.
+fn square_cap_edge(n: usize) -> String {
+    let outline = [
+        [0.0, 1.0],
+        [0.45, 1.0],
+        [0.45, 0.55],
+        [0.25, 0.55],
+        [0.25, 0.3],
+        [0.75, 0.3],
+        [0.75, 0.55],
+        [0.55, 0.55],
+        [0.55, 1.0],
+        [1.0, 1.0],
+    ];
+    let fine = 16 * n;
+    let mut top = resample(&outline, fine);
+    let w = fine / 200;
+    for _ in 0..3 {
+        let prev = top.clone();
+        for q in 1..fine - 1 {
+            let h = w.min(q).min(fine - 1 - q);
+            let c = (2 * h + 1) as f64;
+            top[q] = [0, 1].map(|k| prev[q - h..=q + h].iter().map(|p| p[k]).sum::<f64>() / c);
+        }
+    }
+    let pts: Vec<String> = resample(&top, n)
+        .iter()
+        .map(|p| format!("[{:.12}, {:.12}]", p[0], p[1]))
+        .collect();
+    format!(
+        "curve = {{ type = \"polyline\", points = [{}] }}",
+        pts.join(", ")
+    )
+}
+
+/// The bench's square-cap dent (#16): with the algebraic control functions the converged grid
+/// folds next to the cap's two reentrant corners (108 cells at 257², README "Memory"); with
+/// orthogonality at the dented edge (Section 2.4) it is fold-free with a smallest scaled
+/// Jacobian of 0.446.
+#[test]
+fn a_square_cap_dent_folds_at_its_reentrant_corners_unless_its_edge_is_orthogonal() {
+    let n = 257;
+    let case = one_block_case(
+        n,
+        n,
+        "curve = { type = \"line\", from = [0, 0], to = [0, 1] }",
+        "curve = { type = \"line\", from = [1, 0], to = [1, 1] }",
+        "curve = { type = \"line\", from = [0, 0], to = [1, 0] }",
+        &square_cap_edge(n),
+    );
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("cap.toml"), &case).unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &["run", "cap.toml", "-o", "g.x", "--report", "r.json"],
+    );
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    let r: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
+    let folded = r["blocks"][0]["quality"]["folded_cells"].as_u64().unwrap();
+    assert!((50..200).contains(&folded), "{folded} folded cells");
+    let ortho = case.replace("nj = 257\n", "nj = 257\northogonal = [\"E4\"]\n");
+    assert_ne!(ortho, case);
+    fs::write(d.path().join("ortho.toml"), ortho).unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &["run", "ortho.toml", "-o", "g.x", "--report", "r.json"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let r: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
+    let q = &r["blocks"][0]["quality"];
+    assert_eq!(q["folded_cells"].as_u64(), Some(0));
+    let sj = q["scaled_jacobian_min"].as_f64().unwrap();
+    assert!(sj > 0.4, "smallest scaled Jacobian {sj}");
+}
