@@ -15,6 +15,8 @@
 //! in MB and in bytes per node. The peak includes the boundary, the final grid and the
 //! program itself (a few MB).
 
+#[path = "common/square_cap.rs"]
+mod square_cap;
 use ellipgrid::algebraic::ControlKind;
 use ellipgrid::case::LoadedCase;
 use ellipgrid::elliptic::nested::grid_block_nested;
@@ -54,63 +56,11 @@ fn curved(n: usize) -> Boundary2<2> {
     case.planar_boundary(0).expect("boundary")
 }
 
-/// `m` points along the polyline `p`, equally spaced in arclength.
-fn resample(p: &[[f64; 2]], m: usize) -> Vec<[f64; 2]> {
-    let mut s = vec![0.0];
-    for w in p.windows(2) {
-        let d = ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt();
-        s.push(s.last().unwrap() + d);
-    }
-    let total = *s.last().unwrap();
-    let mut k = 0;
-    (0..m)
-        .map(|q| {
-            let t = total * q as f64 / (m - 1) as f64;
-            while k + 2 < s.len() && s[k + 1] < t {
-                k += 1;
-            }
-            let f = ((t - s[k]) / (s[k + 1] - s[k])).clamp(0.0, 1.0);
-            [
-                p[k][0] + f * (p[k + 1][0] - p[k][0]),
-                p[k][1] + f * (p[k + 1][1] - p[k][1]),
-            ]
-        })
-        .collect()
-}
-
 /// The unit square whose top side (E4) dips into a mushroom-shaped dent: a stem of width 0.1
 /// from y = 1 down to 0.55, a cap of width 0.5 from 0.55 down to 0.3; corners rounded by
 /// moving averages, nodes equally spaced in arclength along every side.
 fn dented(n: usize) -> Boundary2<2> {
-    let outline = [
-        [0.0, 1.0],
-        [0.45, 1.0],
-        [0.45, 0.55],
-        [0.25, 0.55],
-        [0.25, 0.3],
-        [0.75, 0.3],
-        [0.75, 0.55],
-        [0.55, 0.55],
-        [0.55, 1.0],
-        [1.0, 1.0],
-    ];
-    let fine = 16 * n;
-    let mut top = resample(&outline, fine);
-    let w = fine / 200;
-    for _ in 0..3 {
-        let prev = top.clone();
-        for (q, t) in top.iter_mut().enumerate().take(fine - 1).skip(1) {
-            let (a, b) = (q.saturating_sub(w), (q + w).min(fine - 1));
-            let h = (q - a).min(b - q);
-            let (a, b) = (q - h, q + h);
-            let c = (b - a + 1) as f64;
-            *t = [
-                prev[a..=b].iter().map(|p| p[0]).sum::<f64>() / c,
-                prev[a..=b].iter().map(|p| p[1]).sum::<f64>() / c,
-            ];
-        }
-    }
-    let top = resample(&top, n);
+    let top = square_cap::square_cap_top(n);
     let line = |a: [f64; 2], b: [f64; 2]| -> Vec<[f64; 2]> {
         (0..n)
             .map(|k| {

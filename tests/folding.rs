@@ -2,6 +2,8 @@
 //! `--allow-folded`; `check` flags folded grids read from Plot3D.
 
 mod common;
+#[path = "../examples/common/square_cap.rs"]
+mod square_cap;
 use common::*;
 use ellipgrid::io::plot3d::{write_plot3d, Plot3dFormat};
 use ellipgrid::io::Block;
@@ -141,54 +143,9 @@ fn the_dented_square_folds_at_the_start_and_not_at_the_end() {
     );
 }
 
-/// `m` points along the polyline `p`, equally spaced in arclength.
-fn resample(p: &[[f64; 2]], m: usize) -> Vec<[f64; 2]> {
-    let mut s = vec![0.0];
-    for w in p.windows(2) {
-        s.push(s.last().unwrap() + (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]));
-    }
-    let total = *s.last().unwrap();
-    let mut k = 0;
-    (0..m)
-        .map(|q| {
-            let t = total * q as f64 / (m - 1) as f64;
-            while k + 2 < s.len() && s[k + 1] < t {
-                k += 1;
-            }
-            let f = ((t - s[k]) / (s[k + 1] - s[k])).clamp(0.0, 1.0);
-            [0, 1].map(|c| p[k][c] + f * (p[k + 1][c] - p[k][c]))
-        })
-        .collect()
-}
-
-/// The dented top edge of `bench_memory`'s `dented:N` case: a mushroom with a square cap
-/// (stem 0.1 wide down to y = 0.55, cap 0.5 wide down to 0.3), its corners rounded by three
-/// moving averages over ~0.03 of arclength, `n` nodes equally spaced in arclength.
+/// The dented top edge of `bench_memory`'s `dented:N` case as a case-file curve.
 fn square_cap_edge(n: usize) -> String {
-    let outline = [
-        [0.0, 1.0],
-        [0.45, 1.0],
-        [0.45, 0.55],
-        [0.25, 0.55],
-        [0.25, 0.3],
-        [0.75, 0.3],
-        [0.75, 0.55],
-        [0.55, 0.55],
-        [0.55, 1.0],
-        [1.0, 1.0],
-    ];
-    let fine = 16 * n;
-    let mut top = resample(&outline, fine);
-    let w = fine / 200;
-    for _ in 0..3 {
-        let prev = top.clone();
-        for q in 1..fine - 1 {
-            let h = w.min(q).min(fine - 1 - q);
-            let c = (2 * h + 1) as f64;
-            top[q] = [0, 1].map(|k| prev[q - h..=q + h].iter().map(|p| p[k]).sum::<f64>() / c);
-        }
-    }
-    let pts: Vec<String> = resample(&top, n)
+    let pts: Vec<String> = square_cap::square_cap_top(n)
         .iter()
         .map(|p| format!("[{:.12}, {:.12}]", p[0], p[1]))
         .collect();
