@@ -6,6 +6,7 @@ use clap::{Args, Subcommand};
 use ellipgrid::cad::{self, Route, StepFace};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::matching::matching_sides;
+use ellipgrid::grid::Edge;
 use ellipgrid::io::connectivity::{self, ConnFile};
 use ellipgrid::io::plot3d::{self, Plot3dFormat};
 use ellipgrid::io::Block;
@@ -260,6 +261,13 @@ fn grid(a: &GridArgs) -> Result<()> {
                         angles.join(", "),
                         g.gap
                     );
+                    // a cusp gridded as a collapsed side (a pole says so above)
+                    let e1 = g.result.grid.edge(Edge::E1);
+                    if !g.corner_angles[0].is_nan() && e1.iter().all(|p| *p == e1[0]) {
+                        println!(
+                            "  side E1 collapsed to the cusp: the cells along it are triangles"
+                        );
+                    }
                 }
                 println!("{q}");
             }
