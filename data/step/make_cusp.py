@@ -41,7 +41,9 @@ def arc_centre(p, q, r, side):
     return (mx + h * dy / d, my - h * dx / d)
 
 
-def write(name, out, script):
+def write(name, out, script, pts=None, edges=None):
+    pts = pts or [A, B, C]
+    edges = edges or EDGES
     e = []
 
     def add(text):
@@ -63,7 +65,6 @@ def write(name, out, script):
     x = add("DIRECTION('',(1.,0.,0.))")
     axis = add(f"AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})")
     plane = add(f"PLANE('',#{axis})")
-    pts = [A, B, C]
     verts = []
     for (px, py) in pts:
         p = add(f"CARTESIAN_POINT('',({px!r},{py!r},0.))")
@@ -80,7 +81,7 @@ def write(name, out, script):
     def arc(k, a, b):
         # EDGES[k] = (radius, side): side > 0 bulges to the left of a → b (into the face of a
         # counterclockwise loop: clockwise about +z), side < 0 to the right (outwards)
-        r, side = EDGES[k]
+        r, side = edges[k]
         c = arc_centre(a, b, r, side)
         pc = add(f"CARTESIAN_POINT('',({c[0]!r},{c[1]!r},0.))")
         nz = add(f"DIRECTION('',(0.,0.,{-1.0 if side > 0 else 1.0!r}))")
@@ -88,11 +89,12 @@ def write(name, out, script):
         ax = add(f"AXIS2_PLACEMENT_3D('',#{pc},#{nz},#{rx})")
         return add(f"CIRCLE('',#{ax},{r!r})")
 
-    kinds = [line if e is None else arc for e in EDGES]
-    for k in range(3):
-        a, b = pts[k], pts[(k + 1) % 3]
+    kinds = [line if e is None else arc for e in edges]
+    n = len(pts)
+    for k in range(n):
+        a, b = pts[k], pts[(k + 1) % n]
         curve = kinds[k](k, a, b)
-        edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % 3]},#{curve},.T.)")
+        edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % n]},#{curve},.T.)")
         oriented.append(add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)"))
     loop = add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oriented) + "))")
     bound = add(f"FACE_OUTER_BOUND('',#{loop},.T.)")

@@ -256,7 +256,9 @@ fn trimmed(
             }
             let k = lp.cusp.expect("a cusp");
             quietly(|| {
-                let mut sets = vec![lp.corners(Some(CORNER_LIKE))];
+                // two cusps: both collapsed (E1 and E2) first
+                let mut sets: Vec<_> = lp.two_cusps(k).into_iter().collect();
+                sets.push(lp.corners(Some(CORNER_LIKE)));
                 for c in lp.collapsed_corners(k, COLLAPSED) {
                     if sets.len() < COLLAPSED && !sets.iter().any(|s| s.0 == c.0) {
                         sets.push(c);
@@ -426,6 +428,8 @@ fn boundary(
     } else {
         (back.map(|k| c[k]), back.map(|k| angles[k]))
     };
+    // A second cusp (corners c[1] = c[2]) is the side E2.
+    let collapsed2 = lp.cusp.is_some() && q[1] == q[2];
     // The loop from a to b in the traversal direction, at arclength fractions f.
     let path = |lp: &mut FaceLoop, a: LoopPoint, b: LoopPoint, f: &[f64]| {
         if forward {
@@ -453,7 +457,7 @@ fn boundary(
     let mut points: [Vec<Vec3>; 4] = Default::default();
     let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
     for (e, (a, b, reversed, n, d)) in Edge::ALL.into_iter().zip(spec) {
-        if e == Edge::E1 && collapsed {
+        if (e == Edge::E1 && collapsed) || (e == Edge::E2 && collapsed2) {
             continue;
         }
         let at = format!("{place}, edge {e}");
@@ -475,7 +479,11 @@ fn boundary(
     if lp.pole.is_some() {
         pole_side(&mut points, &mut uv, lp.tol(), place)?;
     } else if lp.cusp.is_some() {
-        cusp_side(&mut points, &mut uv, scale, lp.tol(), place)?;
+        let n = refine * (nj - 1) + 1;
+        cusp_side(&mut points, &mut uv, (Edge::E1, n), scale, lp.tol(), place)?;
+        if collapsed2 {
+            cusp_side(&mut points, &mut uv, (Edge::E2, n), scale, lp.tol(), place)?;
+        }
     }
     // Each corner ends two block edges, sampled on two CAD edges that meet there only to the
     // file's tolerance: one point and one (u, v) for both (their mean).
@@ -525,19 +533,25 @@ fn boundary(
     })
 }
 
-/// The side E1 of a face gridded with its cusp collapsed ([`Corners::Collapsed`]), given
-/// E2..E4: every node the cusp in 3D and in (u, v) (the means of the ends of E3 and E4 there,
-/// which must meet).
+/// The side `e` (E1, or E2 for a second cusp) of `n` nodes of a face gridded with its cusp
+/// collapsed ([`Corners::Collapsed`]), given E3 and E4: every node the cusp in 3D and in
+/// (u, v) (the means of the ends of E3 and E4 there, which must meet).
 fn cusp_side(
     points: &mut [Vec<Vec3>; 4],
     uv: &mut [Vec<[f64; 2]>; 4],
+    (e, n): (Edge, usize),
     scale: [f64; 2],
     tol: f64,
     place: &str,
 ) -> Result<()> {
-    let (e1, e2, e3, e4) = (0, Edge::E2.index(), Edge::E3.index(), Edge::E4.index());
-    let (a, b) = (uv[e3][0], uv[e4][0]);
-    let miss = (points[e3][0] - points[e4][0]).norm();
+    let (e3, e4) = (Edge::E3.index(), Edge::E4.index());
+    let k = if e == Edge::E1 {
+        0
+    } else {
+        points[e3].len() - 1
+    };
+    let (a, b) = (uv[e3][k], uv[e4][k]);
+    let miss = (points[e3][k] - points[e4][k]).norm();
     let uv_miss = (0..2)
         .map(|c| ((a[c] - b[c]) * scale[c]).abs())
         .fold(0.0, f64::max);
@@ -550,13 +564,12 @@ fn cusp_side(
             ),
         ));
     }
-    let p = 0.5 * (points[e3][0] + points[e4][0]);
+    let p = 0.5 * (points[e3][k] + points[e4][k]);
     let w = [0, 1].map(|c| 0.5 * (a[c] + b[c]));
-    let n = points[e2].len();
-    points[e1] = vec![p; n];
-    uv[e1] = vec![w; n];
-    (points[e3][0], points[e4][0]) = (p, p);
-    (uv[e3][0], uv[e4][0]) = (w, w);
+    points[e.index()] = vec![p; n];
+    uv[e.index()] = vec![w; n];
+    (points[e3][k], points[e4][k]) = (p, p);
+    (uv[e3][k], uv[e4][k]) = (w, w);
     Ok(())
 }
 

@@ -262,11 +262,17 @@ fn grid(a: &GridArgs) -> Result<()> {
                         g.gap
                     );
                     // a cusp gridded as a collapsed side (a pole says so above)
-                    let e1 = g.result.grid.edge(Edge::E1);
-                    if !g.corner_angles[0].is_nan() && e1.iter().all(|p| *p == e1[0]) {
-                        println!(
-                            "  side E1 collapsed to the cusp: the cells along it are triangles"
-                        );
+                    let point = |e: Edge| {
+                        let s = g.result.grid.edge(e);
+                        s.iter().all(|p| *p == s[0])
+                    };
+                    if !g.corner_angles[0].is_nan() && point(Edge::E1) {
+                        let sides = if point(Edge::E2) {
+                            "sides E1 and E2 collapsed to the cusps"
+                        } else {
+                            "side E1 collapsed to the cusp"
+                        };
+                        println!("  {sides}: the cells there are triangles");
                     }
                 }
                 println!("{q}");

@@ -96,4 +96,21 @@ impl FaceLoop<'_> {
         }
         out
     }
+
+    /// The corner set [k, m, m, k] with the cusp `k` and a second cusp `m` (the other convex
+    /// vertex turning most, if by more than [`CUSP`]) as the collapsed sides E1 and E2: a
+    /// lens between two tangent edges, as SolidWorks writes cone faces ending in two cusps.
+    pub fn two_cusps(&self, k: usize) -> Option<([LoopPoint; 4], [f64; 4])> {
+        let ccw = self.signed_area(self.scale) > 0.0;
+        let (m, t) = (0..self.len())
+            .filter(|&m| m != k && !self.reentrant(m, ccw))
+            .map(|m| (m, self.turning(m)))
+            .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))?;
+        if t <= CUSP {
+            return None;
+        }
+        let at = |edge| LoopPoint { edge, sigma: 0.0 };
+        let (dk, dm) = (self.turning(k).to_degrees(), t.to_degrees());
+        Some(([at(k), at(m), at(m), at(k)], [dk, dm, dm, dk]))
+    }
 }
