@@ -142,7 +142,8 @@ pub enum Corners {
     Balanced,
     /// Three corners, the first a cusp (or the sharpest of exactly three corner-like
     /// vertices) gridded as the side E1 collapsed to that point, in (u, v) and in 3D
-    /// (`FaceLoop::collapsed_at`): for faces whose grid folds with the corner sets above.
+    /// (`FaceLoop::collapsed_at`; with a second cusp, that one as E2 in the first of the
+    /// [`COLLAPSED`] sets): for faces whose grid folds with the corner sets above.
     Collapsed,
 }
 
@@ -248,7 +249,8 @@ fn trimmed(
     let mut lp = lp;
     let others: Vec<([LoopPoint; 4], [f64; 4])> = match sets {
         Corners::Turning => Vec::new(),
-        // the cusp as side E1, the other corners by turning (by more than 20°)
+        // the cusp as side E1 (with a second cusp as E2 first), the other corners by turning
+        // (by more than 20°), then balancing the sides along the cusp
         Corners::Collapsed => {
             lp.cusp = lp.collapsed_at();
             if lp.cusp.is_none() {
