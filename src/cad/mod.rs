@@ -74,7 +74,7 @@ mod trim;
 mod units;
 mod write;
 
-pub use face::{grid_face, grid_face_by, Corners, FaceGrid, BALANCED};
+pub use face::{grid_face, grid_face_by, Corners, FaceGrid, BALANCED, COLLAPSED};
 pub use patch::grid_patch;
 pub use reentrant::{grid_face_split, MAX_BLOCKS};
 pub use split::grid_face_blocks;
