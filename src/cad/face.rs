@@ -15,7 +15,7 @@
 //! The result depends on neither the CAD parametrization nor the (u, v) grid, up to the
 //! discretization error (tests: `tests/step_faces.rs`).
 
-use super::trim::{CadSurface, FaceLoop, LoopPoint};
+use super::trim::{CadSurface, FaceLoop, LoopPoint, CORNER_LIKE};
 use super::{quietly, Route, StepFace};
 use crate::case::DistributionSpec;
 use crate::elliptic::picard::PicardInfo;
@@ -84,9 +84,10 @@ impl FaceGrid {
 /// fourth, placed on each by `dist_i` / `dist_j` (lengths).
 ///
 /// A one-loop face is gridded on corners by turning angle ([`Corners::Turning`]); where every
-/// such try folds, on corner sets with balanced opposite sides ([`Corners::Balanced`]): the
-/// first of those that does not fold is the grid, else the first rule's result stands (a
-/// face that does not fold on its first corners is never regridded).
+/// such try folds, on corner sets with balanced opposite sides ([`Corners::Balanced`]), then
+/// with its cusp as a collapsed side ([`Corners::Collapsed`]): the first of those that does
+/// not fold is the grid, else the first rule's result stands (a face that does not fold on
+/// its first corners is never regridded).
 ///
 /// # Errors
 /// [`Error::Input`] at `place` with the reason if the face is refused ([`Route::Refused`]) or
@@ -112,20 +113,13 @@ pub fn grid_face(
     if !folds(&one) || !matches!(face.route(), Route::Trimmed(_)) {
         return one;
     }
-    let other = grid_face_by(
-        face,
-        (ni, nj),
-        dist_i,
-        dist_j,
-        solver,
-        place,
-        Corners::Balanced,
-    );
-    if folds(&other) || other.is_err() {
-        one
-    } else {
-        other
+    for sets in [Corners::Balanced, Corners::Collapsed] {
+        let other = grid_face_by(face, (ni, nj), dist_i, dist_j, solver, place, sets);
+        if !folds(&other) && other.is_ok() {
+            return other;
+        }
     }
+    one
 }
 
 /// Whether a face's grid folds: a folded grid, or a (u, v) grid that folds.
@@ -146,11 +140,20 @@ pub enum Corners {
     /// (`FaceLoop::balanced_corners`): the [`BALANCED`] cheapest that are no try of
     /// [`Corners::Turning`], for faces whose grid folds with those.
     Balanced,
+    /// Three corners, the first a cusp (or the sharpest of exactly three corner-like
+    /// vertices) gridded as the side E1 collapsed to that point, in (u, v) and in 3D
+    /// (`FaceLoop::collapsed_at`; with a second cusp, that one as E2 in the first of the
+    /// [`COLLAPSED`] sets): for faces whose grid folds with the corner sets above.
+    Collapsed,
 }
 
 /// Corner sets a face whose grid folds with its corners by turning angle tries at most
 /// ([`Corners::Balanced`]).
 pub const BALANCED: usize = 3;
+
+/// Corner sets with a collapsed cusp a face tries at most ([`Corners::Collapsed`]): the
+/// cusp's neighbours by turning angle, then those with balanced sides along the cusp.
+pub const COLLAPSED: usize = 3;
 
 /// [`grid_face`] with the corner sets `corners` only (an untrimmed patch is gridded the same
 /// either way).
@@ -243,8 +246,30 @@ fn trimmed(
     .unwrap_or_else(|_| Err(truck_failed(place)))?;
     // Other corner sets ([`Corners::Balanced`]): the balanced sets that are no try by
     // turning.
+    let mut lp = lp;
     let others: Vec<([LoopPoint; 4], [f64; 4])> = match sets {
         Corners::Turning => Vec::new(),
+        // the cusp as side E1 (with a second cusp as E2 first), the other corners by turning
+        // (by more than 20°), then balancing the sides along the cusp
+        Corners::Collapsed => {
+            lp.cusp = lp.collapsed_at();
+            if lp.cusp.is_none() {
+                return Err(Error::input(place, "no cusp to grid as a collapsed side"));
+            }
+            let k = lp.cusp.expect("a cusp");
+            quietly(|| {
+                // two cusps: both collapsed (E1 and E2) first
+                let mut sets: Vec<_> = lp.two_cusps(k).into_iter().collect();
+                sets.push(lp.corners(Some(CORNER_LIKE)));
+                for c in lp.collapsed_corners(k, COLLAPSED) {
+                    if sets.len() < COLLAPSED && !sets.iter().any(|s| s.0 == c.0) {
+                        sets.push(c);
+                    }
+                }
+                sets
+            })
+            .map_err(|_| truck_failed(place))?
+        }
         Corners::Balanced => quietly(|| {
             let tried = TRIES.map(|(m, _)| lp.corners(m).0);
             let mut b = lp.balanced_corners(BALANCED + TRIES.len());
@@ -256,7 +281,7 @@ fn trimmed(
     };
     let count = match sets {
         Corners::Turning => TRIES.len(),
-        Corners::Balanced => others.len(),
+        Corners::Balanced | Corners::Collapsed => others.len(),
     };
     if count == 0 {
         return Err(Error::input(place, "no other corner set on the loop"));
@@ -269,7 +294,7 @@ fn trimmed(
                 quietly(|| lp.corners(TRIES[t].0)).map_err(|_| truck_failed(place))?,
                 TRIES[t].1,
             ),
-            Corners::Balanced => (others[t], 1),
+            Corners::Balanced | Corners::Collapsed => (others[t], 1),
         };
         if done.contains(&(corners.0, refine)) {
             continue;
@@ -393,8 +418,9 @@ fn boundary(
 ) -> Result<FaceBoundary> {
     let scale = lp.metric_scale();
     let forward = (lp.signed_area(scale) > 0.0) == orientation;
-    // A pole (corners c[0] = c[3]) is the side E1 either way round.
-    let back = if lp.pole.is_some() {
+    // A pole or a cusp (corners c[0] = c[3]) is the side E1 either way round.
+    let collapsed = lp.pole.is_some() || lp.cusp.is_some();
+    let back = if collapsed {
         [0, 2, 1, 3]
     } else {
         [0, 3, 2, 1]
@@ -404,6 +430,8 @@ fn boundary(
     } else {
         (back.map(|k| c[k]), back.map(|k| angles[k]))
     };
+    // A second cusp (corners c[1] = c[2]) is the side E2.
+    let collapsed2 = lp.cusp.is_some() && q[1] == q[2];
     // The loop from a to b in the traversal direction, at arclength fractions f.
     let path = |lp: &mut FaceLoop, a: LoopPoint, b: LoopPoint, f: &[f64]| {
         if forward {
@@ -431,7 +459,7 @@ fn boundary(
     let mut points: [Vec<Vec3>; 4] = Default::default();
     let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
     for (e, (a, b, reversed, n, d)) in Edge::ALL.into_iter().zip(spec) {
-        if e == Edge::E1 && lp.pole.is_some() {
+        if (e == Edge::E1 && collapsed) || (e == Edge::E2 && collapsed2) {
             continue;
         }
         let at = format!("{place}, edge {e}");
@@ -452,6 +480,12 @@ fn boundary(
     }
     if lp.pole.is_some() {
         pole_side(&mut points, &mut uv, lp.tol(), place)?;
+    } else if lp.cusp.is_some() {
+        let n = refine * (nj - 1) + 1;
+        cusp_side(&mut points, &mut uv, (Edge::E1, n), scale, lp.tol(), place)?;
+        if collapsed2 {
+            cusp_side(&mut points, &mut uv, (Edge::E2, n), scale, lp.tol(), place)?;
+        }
     }
     // Each corner ends two block edges, sampled on two CAD edges that meet there only to the
     // file's tolerance: one point and one (u, v) for both (their mean).
@@ -485,7 +519,7 @@ fn boundary(
         (points[a][ka], points[b][kb]) = (x, x);
         (uv[a][ka], uv[b][kb]) = (w, w);
     }
-    if lp.pole.is_some() {
+    if collapsed {
         // the pole's corners stay the pole: one point
         let p = points[Edge::E1.index()][1];
         points[Edge::E1.index()][0] = p;
@@ -499,6 +533,46 @@ fn boundary(
         angles,
         gap: lp.gap,
     })
+}
+
+/// The side `e` (E1, or E2 for a second cusp) of `n` nodes of a face gridded with its cusp
+/// collapsed ([`Corners::Collapsed`]), given E3 and E4: every node the cusp in 3D and in
+/// (u, v) (the means of the ends of E3 and E4 there, which must meet).
+fn cusp_side(
+    points: &mut [Vec<Vec3>; 4],
+    uv: &mut [Vec<[f64; 2]>; 4],
+    (e, n): (Edge, usize),
+    scale: [f64; 2],
+    tol: f64,
+    place: &str,
+) -> Result<()> {
+    let (e3, e4) = (Edge::E3.index(), Edge::E4.index());
+    let k = if e == Edge::E1 {
+        0
+    } else {
+        points[e3].len() - 1
+    };
+    let (a, b) = (uv[e3][k], uv[e4][k]);
+    let miss = (points[e3][k] - points[e4][k]).norm();
+    let uv_miss = (0..2)
+        .map(|c| ((a[c] - b[c]) * scale[c]).abs())
+        .fold(0.0, f64::max);
+    if miss > tol || uv_miss > 10.0 * tol.max(miss) {
+        return Err(Error::input(
+            place,
+            format!(
+                "the block edges E3 and E4 do not meet at the cusp ({miss:.3e} apart in space, \
+                 {uv_miss:.3e} in the surface's parameters)"
+            ),
+        ));
+    }
+    let p = 0.5 * (points[e3][k] + points[e4][k]);
+    let w = [0, 1].map(|c| 0.5 * (a[c] + b[c]));
+    points[e.index()] = vec![p; n];
+    uv[e.index()] = vec![w; n];
+    (points[e3][k], points[e4][k]) = (p, p);
+    (uv[e3][k], uv[e4][k]) = (w, w);
+    Ok(())
 }
 
 /// The side E1 of a face whose loop runs through a pole, given E2..E4: every node the pole

@@ -6,6 +6,7 @@ use clap::{Args, Subcommand};
 use ellipgrid::cad::{self, Route, StepFace};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::matching::matching_sides;
+use ellipgrid::grid::Edge;
 use ellipgrid::io::connectivity::{self, ConnFile};
 use ellipgrid::io::plot3d::{self, Plot3dFormat};
 use ellipgrid::io::Block;
@@ -260,6 +261,19 @@ fn grid(a: &GridArgs) -> Result<()> {
                         angles.join(", "),
                         g.gap
                     );
+                    // a cusp gridded as a collapsed side (a pole says so above)
+                    let point = |e: Edge| {
+                        let s = g.result.grid.edge(e);
+                        s.iter().all(|p| *p == s[0])
+                    };
+                    if !g.corner_angles[0].is_nan() && point(Edge::E1) {
+                        let sides = if point(Edge::E2) {
+                            "sides E1 and E2 collapsed to the cusps"
+                        } else {
+                            "side E1 collapsed to the cusp"
+                        };
+                        println!("  {sides}: the cells there are triangles");
+                    }
                 }
                 println!("{q}");
             }

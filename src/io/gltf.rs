@@ -2,8 +2,9 @@
 //!
 //! Every block becomes one node with its own named mesh and material (a distinct colour per
 //! block). The mesh has two primitives over the same vertices: TRIANGLES (two per quad of every
-//! patch, counter-clockwise about the outward normal, see [`crate::io::patches`]) with unit vertex
-//! NORMALs, and LINES along every grid line of the patches. A planar block lies at z = 0, a
+//! patch, counter-clockwise about the outward normal, see [`crate::io::patches`]; one for a cell
+//! along a block side collapsed to a point) with unit vertex NORMALs, and LINES along every
+//! grid line of the patches (none of zero length). A planar block lies at z = 0, a
 //! volume block shows its six faces (each face has its own vertices so that normals stay sharp
 //! at the block's edges). Optionally the vertices carry COLOR_0 from a cell quality metric
 //! averaged to the nodes, mapped over the range of all blocks ([`GltfOptions::color`]).
@@ -115,12 +116,19 @@ fn mesh_data(patches: &[Patch], values: Colouring) -> std::result::Result<MeshDa
                     .map(|&v| colormap((v - lo) / (hi - lo)).map(|c| c as f32)),
             );
         }
-        for q in p.quads() {
+        // (a cell along a side collapsed to a point is one triangle, no degenerate one)
+        for (q, n) in p.polygons() {
             let q = q.map(|i| base + i as u32);
-            m.triangles.extend([q[0], q[1], q[2], q[0], q[2], q[3]]);
+            m.triangles.extend([q[0], q[1], q[2]]);
+            if n == 4 {
+                m.triangles.extend([q[0], q[2], q[3]]);
+            }
         }
+        // (no lines of zero length along such a side)
         for s in p.segments() {
-            m.lines.extend(s.map(|i| base + i as u32));
+            if p.points[s[0]] != p.points[s[1]] {
+                m.lines.extend(s.map(|i| base + i as u32));
+            }
         }
     }
     Ok(m)

@@ -3,7 +3,8 @@
 //! One group (`g NAME`) and one material (`usemtl NAME`, a distinct diffuse colour per block) per
 //! block. The quads of its patches ([`crate::io::patches`]: the block at z = 0, the surface, or the six
 //! outward faces of a volume) are written as four-vertex faces `f v//vn …`, counter-clockwise
-//! about the outward normal, with unit vertex normals. Coordinates are written with Rust's
+//! about the outward normal, with unit vertex normals; a cell along a block side collapsed to
+//! a point (a pole, a CAD face's cusp) as the three-vertex face it is. Coordinates are written with Rust's
 //! shortest round-trip formatting, so a reader with f64 gets the points back exactly.
 
 use std::path::Path;
@@ -69,9 +70,14 @@ pub fn write_obj(path: &Path, blocks: &[(String, Block)]) -> Result<()> {
                 for n in p.normals() {
                     writeln!(w, "vn {} {} {}", n[0], n[1], n[2])?;
                 }
-                for q in p.quads() {
+                for (q, n) in p.polygons() {
                     let [a, b, c, d] = q.map(|i| i + base);
-                    writeln!(w, "f {a}//{a} {b}//{b} {c}//{c} {d}//{d}")?;
+                    if n == 4 {
+                        writeln!(w, "f {a}//{a} {b}//{b} {c}//{c} {d}//{d}")?;
+                    } else {
+                        // a cell along a side collapsed to a point: the triangle it is
+                        writeln!(w, "f {a}//{a} {b}//{b} {c}//{c}")?;
+                    }
                 }
                 base += p.points.len();
             }

@@ -106,6 +106,25 @@ impl Patch {
         })
     }
 
+    /// The cells as polygons (node indices, how many): [`Patch::quads`], except that a cell
+    /// with an edge of zero length (two consecutive corners one point: the cells along a block
+    /// side collapsed to a point, a pole or a CAD face's cusp) is the triangle it is, that
+    /// corner left out; a cell with fewer than three distinct corners in turn is left out.
+    /// Writers emit these rather than degenerate faces and triangles.
+    pub fn polygons(&self) -> impl Iterator<Item = ([usize; 4], usize)> + '_ {
+        self.quads().filter_map(|q| {
+            let mut out = [0; 4];
+            let mut n = 0;
+            for k in 0..4 {
+                if self.points[q[k]] != self.points[q[(k + 1) % 4]] {
+                    out[n] = q[k];
+                    n += 1;
+                }
+            }
+            (n >= 3).then_some((out, n))
+        })
+    }
+
     /// Grid-line segments (node index pairs): along i on every j-line, then along j.
     pub fn segments(&self) -> Vec<[usize; 2]> {
         let (ni, nj) = (self.ni, self.nj);
@@ -370,6 +389,27 @@ mod tests {
                 assert!(dot(n, sub(c, centre)) > 0.4, "inward normal {n:?} at {c:?}");
             }
         }
+    }
+
+    /// A sector whose side i = 0 is one point: its cells there are triangles (the point
+    /// once), the others quads; every vertex normal is +z (none NaN).
+    #[test]
+    fn cells_along_a_collapsed_side_are_triangles() {
+        let p = Patch::from_fn(4, 3, |i, j| {
+            let (r, a) = (i as f64, 0.3 * j as f64);
+            [r * a.cos(), r * a.sin(), 0.0]
+        });
+        let polys: Vec<([usize; 4], usize)> = p.polygons().collect();
+        assert_eq!(polys.len(), 6);
+        // cells (0, 0), (0, 1): nodes 0, 1, 5 and 4, 5, 9 (node 4 = node 0 dropped, 8 = 4)
+        assert_eq!(polys[0], ([0, 1, 5, 0], 3));
+        assert_eq!(polys[3], ([4, 5, 9, 0], 3));
+        assert!(polys.iter().filter(|q| q.1 == 4).count() == 4);
+        assert!(
+            p.normals().iter().all(|n| (n[2] - 1.0).abs() < 1e-14),
+            "{:?}",
+            p.normals()
+        );
     }
 
     #[test]

@@ -321,7 +321,9 @@ pub fn parametrization(
             .map(|p| [p[0] * scale[0], p[1] * scale[1]])
             .collect()
     });
-    let b = Boundary2::new(scaled, &format!("{place}, (u, v) grid"))?;
+    // A side may be one point in (u, v) (a CAD face's cusp gridded as a collapsed side): the
+    // cells along it are triangles.
+    let b = Boundary2::with_poles(scaled, &format!("{place}, (u, v) grid"))?;
     let params = PicardParams::default();
     let mut uvg = grid_block::<2>(&b, None, ControlKind::Laplace, solver, &params, place)?;
     // The discrete Winslow grid may fold next to a reentrant stretch of the trim, where the

@@ -9,17 +9,53 @@
 //! of its nodes, so for one free node P the twelve corner Jacobians of its four cells are
 //! affine functions g_k · P + h_k, and max_P min_k is a linear program in (P, t) whose
 //! optimum is a vertex where three of them are equal. Boundary nodes never move.
+//!
+//! A block side collapsed to a point (a pole, or a CAD face's cusp gridded as a collapsed
+//! side: [`collapsed_edges`]) makes the cells along it triangles: their two corners at the
+//! point have a cell edge of zero length and are left out; the triangle is folded if one of
+//! its other two corners is.
 
-use crate::grid::Grid2;
+use crate::grid::boundary::collapsed_edges;
+use crate::grid::{Edge, Grid2};
+
+/// Block sides E1..E4 of `g` collapsed to a point ([`collapsed_edges`]).
+fn poles(g: &Grid2<2>) -> [bool; 4] {
+    let edges = Edge::ALL.map(|e| g.edge(e));
+    collapsed_edges(edges.each_ref().map(|e| &e[..]))
+}
+
+/// The edge (k: from node k to node k + 1 of [`cell_nodes`]) of cell (i, j) on a collapsed
+/// block side, if any, when it has zero length: the cell is a triangle and its corners k and
+/// k + 1 (at the collapsed side's point) are not corners.
+fn pole_edge(g: &Grid2<2>, poles: [bool; 4], i: usize, j: usize) -> Option<usize> {
+    let (ni, nj) = (g.ni(), g.nj());
+    let [e1, e2, e3, e4] = poles;
+    let k = if e3 && j == 0 {
+        0
+    } else if e2 && i + 2 == ni {
+        1
+    } else if e4 && j + 2 == nj {
+        2
+    } else if e1 && i == 0 {
+        3
+    } else {
+        return None;
+    };
+    let n = cell_nodes(ni, i, j);
+    let (a, b) = (n[k], n[(k + 1) % 4]);
+    let (x, y) = (g.coord(0), g.coord(1));
+    (x[a] == x[b] && y[a] == y[b]).then_some(k)
+}
 
 /// Cells (i, j) (lower-left node) with a corner Jacobian ≤ −`tol` |a| |b| (the fold test of
 /// the face's parametrization; `tol` lets a corner of 180° to rounding pass), in row order.
 pub fn folded_cells(g: &Grid2<2>, tol: f64) -> Vec<(usize, usize)> {
     let (ni, nj) = (g.ni(), g.nj());
+    let poles = poles(g);
     let mut bad = Vec::new();
     for j in 0..nj - 1 {
         for i in 0..ni - 1 {
-            if cell_folded(g, i, j, tol) {
+            if cell_folded(g, i, j, tol, pole_edge(g, poles, i, j)) {
                 bad.push((i, j));
             }
         }
@@ -36,10 +72,13 @@ fn cell_nodes(ni: usize, i: usize, j: usize) -> [usize; 4] {
     ]
 }
 
-fn cell_folded(g: &Grid2<2>, i: usize, j: usize, tol: f64) -> bool {
+/// Whether cell (i, j) folds; `pole` its zero-length edge on a collapsed side
+/// ([`pole_edge`]), whose two corners are left out.
+fn cell_folded(g: &Grid2<2>, i: usize, j: usize, tol: f64, pole: Option<usize>) -> bool {
     let (x, y) = (g.coord(0), g.coord(1));
     let n = cell_nodes(g.ni(), i, j);
-    (0..4).any(|k| {
+    let corner = |k: usize| pole.is_none_or(|q| k != q && k != (q + 1) % 4);
+    (0..4).filter(|&k| corner(k)).any(|k| {
         let (a, b, c) = (n[(k + 3) % 4], n[k], n[(k + 1) % 4]);
         let (ux, uy) = (x[c] - x[b], y[c] - y[b]);
         let (vx, vy) = (x[a] - x[b], y[a] - y[b]);
@@ -52,7 +91,10 @@ fn cell_folded(g: &Grid2<2>, i: usize, j: usize, tol: f64) -> bool {
 /// The affine corner Jacobians g · P + h of the cells around interior node `p` as functions
 /// of its position P: for a corner triangle in cyclic order (P, q, r),
 /// J = P × (q − r) + q × r.
-fn constraints(g: &Grid2<2>, i: usize, j: usize) -> [([f64; 2], f64); 12] {
+///
+/// In a triangle on a collapsed side (`poles`, [`pole_edge`]) the corner at the side's point
+/// (J ≡ 0) is replaced by the corner at p, which p always has there.
+fn constraints(g: &Grid2<2>, i: usize, j: usize, poles: [bool; 4]) -> [([f64; 2], f64); 12] {
     let ni = g.ni();
     let (x, y) = (g.coord(0), g.coord(1));
     let p = i + ni * j;
@@ -61,8 +103,13 @@ fn constraints(g: &Grid2<2>, i: usize, j: usize) -> [([f64; 2], f64); 12] {
     for (ci, cj) in [(i - 1, j - 1), (i, j - 1), (i, j), (i - 1, j)] {
         let n = cell_nodes(ni, ci, cj);
         let at = n.iter().position(|&q| q == p).expect("node of its cell");
+        let pole = pole_edge(g, poles, ci, cj);
         // the three corners of this cell that involve p: at p, after p, before p
         for k in [at, (at + 1) % 4, (at + 3) % 4] {
+            let k = match pole {
+                Some(q) if k == q || k == (q + 1) % 4 => at,
+                _ => k,
+            };
             let tri = [n[(k + 3) % 4], n[k], n[(k + 1) % 4]];
             let s = tri.iter().position(|&q| q == p).expect("p in its corner");
             let (q, r) = (tri[(s + 1) % 3], tri[(s + 2) % 3]);
@@ -176,6 +223,7 @@ pub fn untangle(g: &mut Grid2<2>, tol: f64, max_sweeps: usize) -> usize {
 /// `bad` moved to their max-min positions; `free` is scratch of one flag per node.
 fn sweep(g: &mut Grid2<2>, bad: &[(usize, usize)], free: &mut [bool]) {
     let (ni, nj) = (g.ni(), g.nj());
+    let poles = poles(g);
     free.fill(false);
     for &(ci, cj) in bad {
         for j in cj.saturating_sub(2)..=(cj + 3).min(nj - 2) {
@@ -192,7 +240,7 @@ fn sweep(g: &mut Grid2<2>, bad: &[(usize, usize)], free: &mut [bool]) {
             if !free[p] {
                 continue;
             }
-            let c = constraints(g, i, j);
+            let c = constraints(g, i, j, poles);
             let (x, y) = (g.coord(0), g.coord(1));
             let now = [x[p], y[p]];
             let reach = [p - 1, p + 1, p - ni, p + ni]
@@ -287,6 +335,30 @@ mod tests {
         }
         assert!(folded_cells(&g, 1e-9).len() > 4);
         assert_eq!(untangle(&mut g, 1e-9, 50), 0);
+    }
+
+    /// A sector of 20° as a grid whose side E1 (i = 0) is one point, the apex: the cells along
+    /// it are triangles, not folded (every corner at the apex has an edge of zero length, which
+    /// made each of the 8 a folded cell before collapsed sides were known here). An interior
+    /// node next to the apex thrown across the sector's edge folds its cells; the untangling
+    /// moves it back (with the apex corners counted it could not: their J ≡ 0).
+    #[test]
+    fn cells_along_a_side_collapsed_to_a_point_are_triangles() {
+        let n = 9;
+        let sector = |i: usize, j: usize| {
+            let (r, a) = (i as f64 / 8.0, (20.0f64).to_radians() * j as f64 / 8.0);
+            [r * a.cos(), r * a.sin()]
+        };
+        let mut g = Grid2::<2>::from_fn(n, n, sector);
+        assert_eq!(poles(&g), [true, false, false, false]);
+        assert!(folded_cells(&g, 1e-9).is_empty());
+        let p = 1 + n * 4;
+        g.coords_mut()[1][p] = -0.05;
+        let bad = folded_cells(&g, 1e-9);
+        assert!(bad.contains(&(0, 3)), "{bad:?}"); // a triangle at the apex folds
+        assert_eq!(untangle(&mut g, 1e-9, 20), 0);
+        let (x, y) = (g.coord(0)[p], g.coord(1)[p]);
+        assert!(y > 0.0 && y < x * (20.0f64).to_radians().tan(), "{x} {y}");
     }
 
     /// A 33 × 33 grid with a fifth of its cells folded (a band of rows mirrored) is returned as

@@ -29,11 +29,11 @@ const OUTWARD: f64 = 1e-3;
 /// A candidate corner: the loop point, its arclength from the loop's start, its cost and its
 /// turning angle (degrees; 0 inside an edge).
 #[derive(Clone, Copy)]
-struct Candidate {
-    at: LoopPoint,
-    pos: f64,
-    cost: f64,
-    deg: f64,
+pub(super) struct Candidate {
+    pub at: LoopPoint,
+    pub pos: f64,
+    pub cost: f64,
+    pub deg: f64,
 }
 
 impl FaceLoop<'_> {
@@ -41,9 +41,40 @@ impl FaceLoop<'_> {
     /// [`FaceLoop::corners`] gives them), cheapest first, each differing from the ones before
     /// in at least one corner's vertex or edge; none for a loop through a pole.
     pub fn balanced_corners(&self, count: usize) -> Vec<([LoopPoint; 4], [f64; 4])> {
-        let n = self.len();
-        if self.pole.is_some() || n == 0 || count == 0 {
+        if self.pole.is_some() || count == 0 {
             return Vec::new();
+        }
+        let Some((cands, total)) = self.candidates() else {
+            return Vec::new();
+        };
+        let ranked = rank(&cands, total);
+        let mut out: Vec<([LoopPoint; 4], [f64; 4])> = Vec::with_capacity(count);
+        let mut picked: Vec<[usize; 4]> = Vec::with_capacity(count);
+        for (_, set) in ranked {
+            let alike = |p: &[usize; 4]| {
+                (0..4).all(|i| {
+                    cands[p[i]].at.edge == cands[set[i]].at.edge
+                        && (cands[p[i]].at.sigma == 0.0) == (cands[set[i]].at.sigma == 0.0)
+                })
+            };
+            if picked.iter().any(alike) {
+                continue;
+            }
+            picked.push(set);
+            out.push((set.map(|i| cands[i].at), set.map(|i| cands[i].deg)));
+            if out.len() == count {
+                break;
+            }
+        }
+        out
+    }
+
+    /// The candidate corners ([`Candidate`]) sorted by their position along the loop, and the
+    /// loop's length; `None` for an empty loop or one without length.
+    pub(super) fn candidates(&self) -> Option<(Vec<Candidate>, f64)> {
+        let n = self.len();
+        if n == 0 {
+            return None;
         }
         let ccw = self.signed_area(self.scale) > 0.0;
         let starts: Vec<f64> = (0..n)
@@ -55,7 +86,7 @@ impl FaceLoop<'_> {
             .collect();
         let total: f64 = (0..n).map(|k| self.length(k)).sum();
         if total.is_nan() || total <= 0.0 {
-            return Vec::new();
+            return None;
         }
         let mut vertices: Vec<Candidate> = (0..n)
             .filter_map(|k| {
@@ -94,26 +125,7 @@ impl FaceLoop<'_> {
             }
         }
         cands.sort_by(|a, b| a.pos.total_cmp(&b.pos));
-        let ranked = rank(&cands, total);
-        let mut out: Vec<([LoopPoint; 4], [f64; 4])> = Vec::with_capacity(count);
-        let mut picked: Vec<[usize; 4]> = Vec::with_capacity(count);
-        for (_, set) in ranked {
-            let alike = |p: &[usize; 4]| {
-                (0..4).all(|i| {
-                    cands[p[i]].at.edge == cands[set[i]].at.edge
-                        && (cands[p[i]].at.sigma == 0.0) == (cands[set[i]].at.sigma == 0.0)
-                })
-            };
-            if picked.iter().any(alike) {
-                continue;
-            }
-            picked.push(set);
-            out.push((set.map(|i| cands[i].at), set.map(|i| cands[i].deg)));
-            if out.len() == count {
-                break;
-            }
-        }
-        out
+        Some((cands, total))
     }
 }
 
