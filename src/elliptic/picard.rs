@@ -31,7 +31,9 @@ pub struct PicardParams {
     /// successive Picard updates (the observed Picard contraction), like an inexact Newton
     /// forcing term: a linear error much below the Picard error would be wasted. The
     /// fixed point is unchanged (the linear error is relative to the Picard residual, which
-    /// vanishes there). 0 solves every step to `linear_tolerance`. Default 0.1.
+    /// vanishes there). 0 solves every step to `linear_tolerance`. Default 0.1. Nested
+    /// volume solves with the multigrid use 3 ρ instead of 0.5 ρ
+    /// ([`crate::elliptic::nested3d::MULTIGRID_FORCING_RATIO`]).
     pub linear_forcing: f64,
     /// Nested iteration (`crate::elliptic::nested`): solve on coarser grids first. `None` (default)
     /// means on with the multigrid solver, off with the direct one; volume blocks
