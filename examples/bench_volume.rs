@@ -4,7 +4,9 @@
 //! `cargo run --release --example bench_volume -- 33 65 129 [--solver multigrid|bicgstab|both]
 //! [--modes]`
 //!
-//! `--write DIR` writes every computed grid (or solution) as raw f64 for `scripts/same-grids.sh`.
+//! `--write DIR` writes every computed grid (or solution) as raw f64 for `scripts/same-grids.sh`
+//! (named with the tolerance if not the default). `--whole-only` skips the first-operator solves; `--tol T` sets
+//! the Picard tolerance of the whole solve (default 1e-10; e.g. 1e-13 for a reference grid).
 //!
 //! Per size and solver (default both): the first Picard operator solved from zero to 1e-10
 //! (iterations, mean factor, setup and solve seconds, ns/unknown/iteration), and the whole
@@ -92,14 +94,17 @@ fn first_operator(n: usize, faces: &Faces, solver: &mut dyn LinearSolver<Stencil
 /// The whole volume solve of the benchmark block with `solver`.
 /// The whole generation with the default parameters (nested iteration, inexact Picard):
 /// Picard steps per level (coarsest first), seconds, work units.
-fn whole(n: usize, faces: &Faces, solver: &mut dyn LinearSolver<Stencil19>) {
+fn whole(n: usize, faces: &Faces, solver: &mut dyn LinearSolver<Stencil19>, tol: f64) {
     let t0 = Instant::now();
     let r = grid_volume(
         faces,
         None,
         ControlKind::Algebraic,
         solver,
-        &PicardParams::default(),
+        &PicardParams {
+            tolerance: tol,
+            ..PicardParams::default()
+        },
         "bench",
         &mut |_, _| {},
     )
@@ -120,7 +125,11 @@ fn whole(n: usize, faces: &Faces, solver: &mut dyn LinearSolver<Stencil19>) {
     steps.push(r.picard.steps.to_string());
     let c = r.grid.coords();
     dump::dump(
-        &format!("volume_{n}_{}", r.picard.linear_solver),
+        &if tol == PicardParams::default().tolerance {
+            format!("volume_{n}_{}", r.picard.linear_solver)
+        } else {
+            format!("volume_{n}_{}_tol{tol:e}", r.picard.linear_solver)
+        },
         &[&c[0], &c[1], &c[2]],
     );
     let q = quality3d(&r.grid);
@@ -158,7 +167,19 @@ fn main() {
         std::process::exit(2);
     }
     let modes = args.iter().any(|a| a == "--modes");
-    let sizes: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    let whole_only = args.iter().any(|a| a == "--whole-only");
+    let tol_at = args.iter().position(|a| a == "--tol");
+    let tol: f64 = tol_at
+        .and_then(|i| args.get(i + 1))
+        .map_or(PicardParams::default().tolerance, |t| {
+            t.parse().expect("--tol: a number")
+        });
+    let sizes: Vec<usize> = args
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| tol_at != Some(i.wrapping_sub(1)))
+        .filter_map(|(_, a)| a.parse().ok())
+        .collect();
     let sizes = if sizes.is_empty() {
         vec![33, 65]
     } else {
@@ -167,17 +188,17 @@ fn main() {
     let (mg, bi) = (solver != "bicgstab", solver != "multigrid");
     for n in sizes {
         let faces = boundary(n);
-        if mg {
+        if mg && !whole_only {
             first_operator(n, &faces, &mut Multigrid3::default());
         }
-        if bi {
+        if bi && !whole_only {
             first_operator(n, &faces, &mut BiCgStabIlu::new());
         }
         if mg {
-            whole(n, &faces, &mut Multigrid3::default());
+            whole(n, &faces, &mut Multigrid3::default(), tol);
         }
         if bi {
-            whole(n, &faces, &mut BiCgStabIlu::new());
+            whole(n, &faces, &mut BiCgStabIlu::new(), tol);
         }
         if modes {
             nested_lines(&faces);

@@ -161,7 +161,7 @@ pub(crate) fn run<S: NewtonSystem>(
     };
     let (history, converged) = picard::iterate(
         params,
-        relative_stop,
+        picard::Rules::stop(relative_stop),
         place,
         |small, ctl, _| {
             let residual = match cached.take() {

@@ -313,7 +313,13 @@ pub fn solve<const D: usize>(
     let solved = if params.iteration(D) == Nonlinear::Newton {
         newton::run(&mut sys, params, 0.0, false, place, &mut |_, _| {})
     } else {
-        picard::run(&mut sys, params, 0.0, place, &mut |_, _| {})
+        picard::run(
+            &mut sys,
+            params,
+            picard::Rules::stop(0.0),
+            place,
+            &mut |_, _| {},
+        )
     };
     solved.map(|(info, _)| info)
 }

@@ -31,7 +31,9 @@ pub struct PicardParams {
     /// successive Picard updates (the observed Picard contraction), like an inexact Newton
     /// forcing term: a linear error much below the Picard error would be wasted. The
     /// fixed point is unchanged (the linear error is relative to the Picard residual, which
-    /// vanishes there). 0 solves every step to `linear_tolerance`. Default 0.1.
+    /// vanishes there). 0 solves every step to `linear_tolerance`. Default 0.1. Nested
+    /// volume solves with the multigrid use 3 ρ instead of 0.5 ρ
+    /// ([`crate::elliptic::nested3d::MULTIGRID_FORCING_RATIO`]).
     pub linear_forcing: f64,
     /// Nested iteration (`crate::elliptic::nested`): solve on coarser grids first. `None` (default)
     /// means on with the multigrid solver, off with the direct one; volume blocks
@@ -243,6 +245,33 @@ pub(crate) fn append(all: &mut Option<PicardInfo>, step: PicardInfo) {
 /// coarse levels) instead of a full setup.
 pub const SMALL_CHANGE: f64 = 1e-5;
 
+/// Where a Picard solve runs decides three of its rules: a coarse level of nested iteration
+/// also stops at a fraction of its first update, and the volume multigrid's nested solves
+/// ([`crate::elliptic::nested3d`]) force their linear solves more loosely and keep the
+/// multigrid's coarse levels over larger changes of the operator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Rules {
+    /// Stop (converged) once the update falls below this times the first update; 0: off.
+    pub relative_stop: f64,
+    /// The ratio c of the forcing term to the observed Picard contraction ([`forcing`]).
+    pub forcing_ratio: f64,
+    /// After a step whose update (relative to the diameter) was below this the linear solver
+    /// is only updated ([`LinearSolver::update`]), not set up afresh.
+    pub small_change: f64,
+}
+
+impl Rules {
+    /// The rules of every Picard solve but the volume multigrid's nested ones, stopping at
+    /// `relative_stop` times the first update too (0: off).
+    pub(crate) fn stop(relative_stop: f64) -> Self {
+        Rules {
+            relative_stop,
+            forcing_ratio: FORCING_RATIO,
+            small_change: SMALL_CHANGE,
+        }
+    }
+}
+
 /// A generated grid with the history of its solve.
 #[derive(Clone, Debug)]
 pub struct Solved<G> {
@@ -360,7 +389,7 @@ pub(crate) fn check_input(
 pub(crate) fn run<S: System>(
     sys: &mut S,
     params: &PicardParams,
-    relative_stop: f64,
+    rules: Rules,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<(PicardInfo, f64)> {
@@ -378,11 +407,11 @@ pub(crate) fn run<S: System>(
     let mut moved = f64::INFINITY;
     let (history, converged) = iterate(
         params,
-        relative_stop,
+        rules,
         place,
         |small, ctl, threshold| {
             let residual = evaluate(&mut *sys);
-            let small = small && moved < SMALL_CHANGE;
+            let small = small && moved < rules.small_change;
             sys.prepare(small).map_err(|source| Error::Solve {
                 place: place.to_string(),
                 source,
@@ -419,26 +448,28 @@ pub(crate) fn run<S: System>(
 }
 
 /// Runs Picard steps until the error estimate falls below the tolerance (or below
-/// `relative_stop` times the first update, a coarse level of nested iteration) or
+/// `rules.relative_stop` times the first update, a coarse level of nested iteration) or
 /// `params.max_steps` are done. `step(small, ctl)` does one step's work: evaluate the
 /// operator at the current iterate, set up the linear solver (only update it if `small`: the
-/// last update was below [`SMALL_CHANGE`]), solve the corrections to `ctl` and apply them.
+/// last update was below `rules.small_change`), solve the corrections to `ctl` (forced by
+/// `rules.forcing_ratio`) and apply them.
 /// `progress` sees every step. Returns the history and whether the iteration converged; a
 /// failed linear solve or a non-finite update is an error naming `place`.
 pub(crate) fn iterate(
     params: &PicardParams,
-    relative_stop: f64,
+    rules: Rules,
     place: &str,
     mut step: impl FnMut(bool, &SolveControl, f64) -> Result<StepWork>,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<(Vec<PicardStep>, bool)> {
+    let relative_stop = rules.relative_stop;
     let mut history: Vec<PicardStep> = Vec::new();
     for step_no in 0..params.max_steps {
         let small = history
             .last()
-            .is_some_and(|last| last.update < SMALL_CHANGE);
+            .is_some_and(|last| last.update < rules.small_change);
         let ctl = SolveControl {
-            rel_tol: forcing(params, &history),
+            rel_tol: forcing(params, &history, rules.forcing_ratio),
             max_iter: params.linear_max_iter,
         };
         let threshold = if history.is_empty() {
@@ -580,7 +611,7 @@ fn step_record(
 
 mod stop;
 use stop::{contraction_estimate, stop_threshold};
-pub(crate) use stop::{error_estimate, forcing};
+pub(crate) use stop::{error_estimate, forcing, FORCING_RATIO};
 
 #[cfg(test)]
 mod tests;

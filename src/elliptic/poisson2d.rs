@@ -264,7 +264,13 @@ pub(crate) fn solve_level<const D: usize>(
         blocks: false,
     };
     match params.iteration(D) {
-        Nonlinear::Picard => picard::run(&mut sys, params, relative_stop, place, &mut |_, _| {}),
+        Nonlinear::Picard => picard::run(
+            &mut sys,
+            params,
+            picard::Rules::stop(relative_stop),
+            place,
+            &mut |_, _| {},
+        ),
         Nonlinear::Newton => {
             // the coupling is allocated by the first Newton step (`linearize`)
             newton::run(

@@ -239,20 +239,29 @@ pub fn solve(
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<PicardInfo> {
-    solve_timed(x, ctrl, solver, params, 0.0, place, progress).map(|(info, _)| info)
+    solve_timed(
+        x,
+        ctrl,
+        solver,
+        params,
+        picard::Rules::stop(0.0),
+        place,
+        progress,
+    )
+    .map(|(info, _)| info)
 }
 
 /// [`solve`], also returning the shortest time (seconds) of one evaluation of the residual of
 /// [86] with its assembly ([`assemble`] + residual) on this grid, measured at every step: the
-/// work unit of [`crate::elliptic::nested3d`]. With `relative_stop > 0` the iteration also stops
-/// (converged) once the update falls below `relative_stop` times the first update (a coarse
+/// work unit of [`crate::elliptic::nested3d`]. With `rules.relative_stop > 0` the iteration also stops
+/// (converged) once the update falls below that times the first update (a coarse
 /// level of nested iteration).
 pub(crate) fn solve_timed(
     x: &mut Grid3,
     ctrl: &Control3,
     solver: &mut dyn LinearSolver<Stencil19>,
     params: &PicardParams,
-    relative_stop: f64,
+    rules: picard::Rules,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<(PicardInfo, f64)> {
@@ -278,7 +287,7 @@ pub(crate) fn solve_timed(
         scratch: vec![0.0; n],
         diam,
     };
-    picard::run(&mut sys, params, relative_stop, place, progress)
+    picard::run(&mut sys, params, rules, place, progress)
 }
 
 /// The Picard system of one volume block: iterate, frozen operator, right-hand sides, and the

@@ -4,8 +4,14 @@
 
 use super::{PicardParams, PicardStep};
 
+/// The ratio of the forcing term to the observed Picard contraction ([`forcing`]) of every
+/// Picard iteration but the volume multigrid's nested one
+/// ([`crate::elliptic::nested3d::MULTIGRID_FORCING_RATIO`]).
+pub(crate) const FORCING_RATIO: f64 = 0.5;
+
 /// The relative linear tolerance of the next Picard step: `linear_tolerance` without forcing,
-/// else `clamp(max(0.5 ρ, 0.5 tol / u), linear_tolerance, linear_forcing)` with ρ the last
+/// else `clamp(max(c ρ, 0.5 tol / u), linear_tolerance, linear_forcing)` with `c` =
+/// `forcing_ratio` ([`FORCING_RATIO`] but in nested volume multigrid solves), ρ the last
 /// observed Picard contraction and u = ρ · (last update) the predicted next update: no more
 /// accurate than the Picard error, and no more than half the Picard tolerance in absolute
 /// terms (which also keeps the request above round-off near convergence). The stop test
@@ -13,7 +19,7 @@ use super::{PicardParams, PicardStep};
 /// cost a step but never a wrong convergence claim; half (rather than a tenth, as measured
 /// before) saves the second cycle of the last step at 129³ (bench_volume: 85 → 77 WU).
 /// `linear_forcing` for the first two steps.
-pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
+pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep], forcing_ratio: f64) -> f64 {
     let (floor, cap) = (params.linear_tolerance, params.linear_forcing);
     if cap <= floor {
         return floor;
@@ -22,7 +28,7 @@ pub(crate) fn forcing(params: &PicardParams, history: &[PicardStep]) -> f64 {
         [.., a, b] if a.update > 0.0 && b.update > 0.0 => {
             let rho = b.update / a.update;
             let predicted = rho * b.update;
-            (0.5 * rho)
+            (forcing_ratio * rho)
                 .max(0.5 * params.tolerance / predicted)
                 .clamp(floor, cap)
         }
