@@ -15,9 +15,13 @@ import sys
 PTS = [(0, 0), (4, 0), (4, 3), (2, 0.5), (0, 3)]
 
 
-def write_polygon_face(name, pts, out, script):
-    """Writes OUT/NAME.step: one planar face bounded by the straight edges of the loop PTS
-    (counterclockwise about +z in the plane z = 0, millimetres); SCRIPT goes in FILE_NAME."""
+def write_polygon_face(name, pts, out, script, curve=None, coord="{:.2f}",
+                       stamp="2026-11-25T23:00:00"):
+    """Writes OUT/NAME.step: one planar face bounded by the edges of the loop PTS
+    (counterclockwise about +z in the plane z = 0, millimetres); SCRIPT goes in FILE_NAME with
+    the time STAMP. Edge k runs from PTS[k] to the next point along CURVE(add, k, a, b), which
+    adds the entities of its curve through add(text) -> entity number and returns the
+    curve's number (default: a LINE); COORD formats the points' coordinates."""
     e = []
 
     def add(text):
@@ -41,18 +45,23 @@ def write_polygon_face(name, pts, out, script):
     plane = add(f"PLANE('',#{axis})")
     verts = []
     for (px, py) in pts:
-        p = add(f"CARTESIAN_POINT('',({px:.2f},{py:.2f},0.))")
+        p = add(f"CARTESIAN_POINT('',({coord.format(px)},{coord.format(py)},0.))")
         verts.append(add(f"VERTEX_POINT('',#{p})"))
     oriented = []
-    n = len(pts)
-    for k in range(n):
-        (ax, ay), (bx, by) = pts[k], pts[(k + 1) % n]
+
+    def line(add, k, a, b):
+        (ax, ay), (bx, by) = a, b
         length = ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
-        p = add(f"CARTESIAN_POINT('',({ax:.2f},{ay:.2f},0.))")
+        p = add(f"CARTESIAN_POINT('',({coord.format(ax)},{coord.format(ay)},0.))")
         d = add(f"DIRECTION('',({(bx - ax) / length!r},{(by - ay) / length!r},0.))")
         v = add(f"VECTOR('',#{d},1.)")
-        line = add(f"LINE('',#{p},#{v})")
-        edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % n]},#{line},.T.)")
+        return add(f"LINE('',#{p},#{v})")
+
+    curve = curve or line
+    n = len(pts)
+    for k in range(n):
+        c = curve(add, k, pts[k], pts[(k + 1) % n])
+        edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % n]},#{c},.T.)")
         oriented.append(add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)"))
     loop = add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oriented) + "))")
     bound = add(f"FACE_OUTER_BOUND('',#{loop},.T.)")
@@ -71,7 +80,7 @@ def write_polygon_face(name, pts, out, script):
     e[rep - 1] = f"MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#{axis},#{model}),#{ctx})"
     with open(f"{out}/{name}.step", "w") as f:
         f.write("ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('ellipgrid test face'),'2;1');\n"
-                f"FILE_NAME('{name}','2026-11-25T23:00:00',('ellipgrid'),(''),"
+                f"FILE_NAME('{name}','{stamp}',('ellipgrid'),(''),"
                 f"'{script}','','');\n"
                 "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\n"
                 "DATA;\n")
