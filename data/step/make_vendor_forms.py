@@ -19,6 +19,13 @@ so that its two edges there leave the plane z = 0 by up to 1e-2 (2e-3 of the loo
 above the relative tolerance 1e-3), and the file's distance uncertainty 5e-3 instead of 1e-7
 (the gap is then within 3 uncertainties, as CATIA's ventilator has them).
 
+cylinder_patch_nurbs_vendor_order.step: cylinder_patch_nurbs.step with the partial entities
+of its complex instances in the order Spatial's writer (TraceParts) uses, `_` before letters
+(`B_SPLINE_SURFACE(…) B_SPLINE_SURFACE_WITH_KNOTS(…) BOUNDED_SURFACE() …`), at which the reader
+lost every rational surface and its face; and a second face on a RECTANGULAR_TRIMMED_SURFACE of
+the same NURBS surface over its whole parameter range (the same shape; truck-stepio 0.3 reads
+no trimmed surface, so that face is left out and must be named).
+
     python3 make_vendor_forms.py data/step
 """
 import math
@@ -60,6 +67,24 @@ def main():
     sub("#20 = CARTESIAN_POINT('',(4.00,3.00,0.));", "#20 = CARTESIAN_POINT('',(4.00,3.00,0.01));")
     sub("LENGTH_MEASURE(1.E-07)", "LENGTH_MEASURE(5.E-03)")
     (out / "plane_notch_tolerant.step").write_text(text)
+
+    text = (here / "cylinder_patch_nurbs.step").read_text()
+    for old, new in [
+        ("#31 = ( BOUNDED_SURFACE() B_SPLINE_SURFACE(", "#31 = ( B_SPLINE_SURFACE("),
+        (".PIECEWISE_BEZIER_KNOTS.) \nGEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE((",
+         ".PIECEWISE_BEZIER_KNOTS.) \nRATIONAL_B_SPLINE_SURFACE(("),
+        (",(1.,1.))) REPRESENTATION_ITEM('') SURFACE() );",
+         ",(1.,1.))) BOUNDED_SURFACE() GEOMETRIC_REPRESENTATION_ITEM() REPRESENTATION_ITEM('')\n"
+         "SURFACE() );"),
+        ("#16 = OPEN_SHELL('',(#17));", "#16 = OPEN_SHELL('',(#17,#200));"),
+    ]:
+        sub(old, new)
+    extra = [
+        "#200 = ADVANCED_FACE('',(#18),#201,.T.);",
+        "#201 = RECTANGULAR_TRIMMED_SURFACE('',#31,0.,1.570796326795,0.,3.,.T.,.T.);",
+    ]
+    sub("ENDSEC;\nEND-ISO-10303-21;", "\n".join(extra) + "\nENDSEC;\nEND-ISO-10303-21;")
+    (out / "cylinder_patch_nurbs_vendor_order.step").write_text(text)
 
 
 if __name__ == "__main__":

@@ -55,13 +55,15 @@
 //! Faces without a boundary, whose one loop winds around the surface (a cap around a pole) or
 //! runs through two poles, or that cannot be split into blocks are refused with the reason.
 //!
-//! Limits of truck-stepio 0.3 that show here: faces whose surface or edges it cannot convert
-//! are skipped (it prints a line to stderr) and so get no number; its writer prints numbers
+//! Limits of truck-stepio 0.3 that show here: faces whose surface it cannot convert are
+//! skipped (it prints a line to stderr) and so get no number; [`read_step`] lists them with
+//! their entity ids and the reason (`unread`: `step list` and `step grid` name each); its writer prints numbers
 //! below 10⁻² in magnitude with 11 significant digits (absolute error below 5·10⁻¹⁴), larger
 //! ones exactly; a face with `same_sense = .F.` is read with u and v swapped.
 
 mod band;
 mod blocks;
+mod complex;
 mod edge;
 mod face;
 mod holes;
@@ -72,12 +74,14 @@ mod rewrite;
 mod split;
 mod trim;
 mod units;
+mod unread;
 mod write;
 
 pub use face::{grid_face, grid_face_by, Corners, FaceGrid, BALANCED, COLLAPSED};
 pub use patch::grid_patch;
 pub use reentrant::{grid_face_split, MAX_BLOCKS};
 pub use split::grid_face_blocks;
+pub use unread::Unread;
 pub use write::write_step_surface;
 
 use crate::{Error, Result};
@@ -232,7 +236,24 @@ fn quietly<T>(f: impl FnOnce() -> T) -> std::thread::Result<T> {
 /// [`Error::Io`] if the file cannot be read; [`Error::Format`] if it is not STEP, has no
 /// shell, or truck-stepio fails on it (its panics are caught and reported here).
 pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
-    step_faces_from_text(&crate::io::read_input_string(path)?, path)
+    Ok(read_step(path)?.faces)
+}
+
+/// The faces of a STEP file, and the face entities of its shells that the reader left out.
+#[derive(Clone, Debug)]
+pub struct StepFaces {
+    /// The faces read, numbered from 1 ([`StepFace::index`]).
+    pub faces: Vec<StepFace>,
+    /// The face entities not read (they get no number), each with the reason.
+    pub unread: Vec<Unread>,
+}
+
+/// [`read_step_faces`], with the faces the reader left out.
+///
+/// # Errors
+/// As [`read_step_faces`].
+pub fn read_step(path: &Path) -> Result<StepFaces> {
+    step_from_text(&crate::io::read_input_string(path)?, path)
 }
 
 /// [`read_step_faces`] of the text of a STEP file; `path` names it in messages.
@@ -240,8 +261,17 @@ pub fn read_step_faces(path: &Path) -> Result<Vec<StepFace>> {
 /// # Errors
 /// As [`read_step_faces`].
 pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
+    Ok(step_from_text(text, path)?.faces)
+}
+
+/// [`read_step`] of the text of a STEP file; `path` names it in messages.
+///
+/// # Errors
+/// As [`read_step_faces`].
+pub fn step_from_text(text: &str, path: &Path) -> Result<StepFaces> {
     prescan::check(text).map_err(|m| Error::format(path, m))?;
     let text = rewrite::empty_lists(text);
+    let text = complex::complex_order(&text);
     let text = rewrite::prefer_3d_curves(&text);
     let text = rewrite::unnamed_labels(&text);
     let text = rewrite::untrim_curves(&text);
@@ -257,7 +287,7 @@ pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
             Error::format(path, format!("the STEP reader failed: {msg}"))
         })?
         .map_err(|m| Error::format(path, m))?;
-    let (shells, bare) = shells;
+    let (shells, bare, unread) = shells;
     let mut faces = Vec::new();
     for shell in &shells {
         for face in &shell.faces {
@@ -272,12 +302,13 @@ pub fn step_faces_from_text(text: &str, path: &Path) -> Result<Vec<StepFace>> {
         f.uncertainty = uncertainty;
     }
     if faces.is_empty() {
-        return Err(Error::format(
-            path,
-            "no faces found (no shell with a readable face)",
-        ));
+        let why = match unread.first() {
+            Some(u) => format!("no face could be read ({u})"),
+            None => "no faces found (no shell with a readable face)".into(),
+        };
+        return Err(Error::format(path, why));
     }
-    Ok(faces)
+    Ok(StepFaces { faces, unread })
 }
 
 /// The surface type's name.
@@ -427,7 +458,9 @@ pub fn step_surface(path: &Path, face: usize) -> Result<BSplineSurf> {
 /// writes its components so, in `GEOMETRIC_SET`s), each an untrimmed four-sided patch.
 type Bare = Vec<StepSurface>;
 
-fn parse_shells(text: &str) -> std::result::Result<(Vec<Shell>, Bare), String> {
+/// The shells in entity order, the bare surfaces (if no shell has a face) and the faces of
+/// the shells the reader leaves out.
+fn parse_shells(text: &str) -> std::result::Result<(Vec<Shell>, Bare, Vec<Unread>), String> {
     use truck_stepio::r#in::ruststep::tables::EntityTable;
     use truck_stepio::r#in::{
         BSplineSurfaceWithKnotsHolder as Knots, RationalBSplineSurfaceHolder as Rational,
@@ -440,6 +473,10 @@ fn parse_shells(text: &str) -> std::result::Result<(Vec<Shell>, Bare), String> {
     let table = Table::from_data_section(data);
     let mut ids: Vec<&u64> = table.shell.keys().collect();
     ids.sort();
+    let unread = ids
+        .iter()
+        .flat_map(|id| unread::unread_faces(&table, **id, &table.shell[id], text))
+        .collect();
     let shells = ids
         .into_iter()
         .map(|id| {
@@ -469,5 +506,5 @@ fn parse_shells(text: &str) -> std::result::Result<(Vec<Shell>, Bare), String> {
             bare.extend(surface);
         }
     }
-    Ok((shells, bare))
+    Ok((shells, bare, unread))
 }

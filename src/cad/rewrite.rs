@@ -14,7 +14,10 @@
 //! - [`super::units::radian_cone_angles`] (in `units`): a cone's semi-angle in the file's
 //!   plane angle unit (Creo, Inventor, Pro/E, UG write degrees) written in radians.
 //! - [`empty_lists`]: an empty list given as an attribute becomes `$` (zoo.dev writes
-//!   `PRODUCT(…, ())`, at which truck-stepio's tokenizer refuses the whole file).
+//!   `PRODUCT(…, ())`, at which truck-stepio's tokenizer refuses the whole file);
+//! - [`super::complex::complex_order`] (in `complex`): the partial entities of a complex
+//!   instance in the byte order of their names (Spatial writes `B_SPLINE_SURFACE(…)` before
+//!   `BOUNDED_SURFACE()`, and the reader lost every rational surface so written).
 
 use super::prescan::{code_bytes, references, statements, top_level_args};
 use std::borrow::Cow;

@@ -119,7 +119,8 @@ pub fn step(a: &StepArgs) -> Result<()> {
 }
 
 fn list(file: &Path) -> Result<()> {
-    for f in cad::read_step_faces(file)? {
+    let read = cad::read_step(file)?;
+    for f in read.faces {
         let what = match f.route() {
             Route::Patch => {
                 let (p, q) = f.surface.as_ref().map_or((0, 0), |s| s.degrees());
@@ -138,6 +139,9 @@ fn list(file: &Path) -> Result<()> {
         };
         println!("face {}: {}, {what}", f.index, f.surface_type);
     }
+    for u in &read.unread {
+        println!("not read: {u}");
+    }
     Ok(())
 }
 
@@ -153,7 +157,12 @@ fn grid(a: &GridArgs) -> Result<()> {
         job::output_kind(p)?;
     }
     let name = a.file.display().to_string();
-    let faces = cad::read_step_faces(&a.file)?;
+    let cad::StepFaces { faces, unread } = cad::read_step(&a.file)?;
+    if a.face.is_none() {
+        for u in &unread {
+            eprintln!("not read: {name}: {u}");
+        }
+    }
     let chosen: Vec<&StepFace> = match a.face {
         Some(n) => {
             let f = n.checked_sub(1).and_then(|k| faces.get(k)).ok_or_else(|| {
@@ -343,12 +352,20 @@ fn grid(a: &GridArgs) -> Result<()> {
             ),
         });
     }
-    if !failed.is_empty() {
+    if !failed.is_empty() || !unread.is_empty() {
+        let mut why = Vec::new();
+        if !failed.is_empty() {
+            why.push(format!("not gridded: faces {failed:?}"));
+        }
+        if !unread.is_empty() {
+            let ids: Vec<String> = unread.iter().map(|u| format!("#{}", u.face)).collect();
+            why.push(format!("not read: face entities {}", ids.join(", ")));
+        }
         return Err(Error::input(
             name,
             format!(
-                "{} of {total} faces gridded and written; not gridded: faces {failed:?} (reasons above)",
-                written_faces,
+                "{written_faces} of {total} faces gridded and written; {} (reasons above)",
+                why.join("; ")
             ),
         ));
     }
