@@ -44,7 +44,7 @@ pub(super) fn complex_order(text: &str) -> Cow<'_, str> {
 /// The partial entity instances `NAME(…)` at the start of `inner` (the text after a complex
 /// instance's opening parenthesis) up to its closing one: each name, its byte offset in
 /// `inner` and its text; `None` if `inner` is not such a list.
-fn partials(inner: &str) -> Option<Vec<(&str, usize, &str)>> {
+pub(super) fn partials(inner: &str) -> Option<Vec<(&str, usize, &str)>> {
     let mut out = Vec::new();
     let mut at = 0;
     loop {

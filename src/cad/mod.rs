@@ -68,6 +68,7 @@ mod edge;
 mod face;
 mod holes;
 mod patch;
+mod placement;
 mod prescan;
 mod reentrant;
 mod rewrite;
@@ -88,7 +89,7 @@ use crate::{Error, Result};
 use ellipgrid_geometry::BSplineSurf;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
-use truck_geometry::prelude::Point3;
+use truck_geometry::prelude::{Matrix4, Point3, SquareMatrix};
 use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 use truck_stepio::r#in::{ruststep, Table};
 use truck_topology::compress::{CompressedFace, CompressedShell};
@@ -288,10 +289,22 @@ pub fn step_from_text(text: &str, path: &Path) -> Result<StepFaces> {
         })?
         .map_err(|m| Error::format(path, m))?;
     let (shells, bare, unread) = shells;
+    // each shell once per instance of its part, placed in the assembly
+    let ids: Vec<u64> = shells.iter().map(|(id, _)| *id).collect();
+    let placed = placement::shell_placements(&text, &ids).map_err(|m| Error::format(path, m))?;
     let mut faces = Vec::new();
-    for shell in &shells {
-        for face in &shell.faces {
-            faces.push(step_face(faces.len() + 1, shell, face));
+    for (id, shell) in &shells {
+        for m in &placed[id] {
+            let moved;
+            let shell = if *m == Matrix4::identity() {
+                shell
+            } else {
+                moved = placement::place(shell, *m);
+                &moved
+            };
+            for face in &shell.faces {
+                faces.push(step_face(faces.len() + 1, shell, face));
+            }
         }
     }
     for surface in bare {
@@ -458,9 +471,12 @@ pub fn step_surface(path: &Path, face: usize) -> Result<BSplineSurf> {
 /// writes its components so, in `GEOMETRIC_SET`s), each an untrimmed four-sided patch.
 type Bare = Vec<StepSurface>;
 
-/// The shells in entity order, the bare surfaces (if no shell has a face) and the faces of
-/// the shells the reader leaves out.
-fn parse_shells(text: &str) -> std::result::Result<(Vec<Shell>, Bare, Vec<Unread>), String> {
+/// The shells (with their entity ids) in entity order, the bare surfaces (if no shell has a
+/// face) and the faces of the shells the reader leaves out.
+type Parsed = (Vec<(u64, Shell)>, Bare, Vec<Unread>);
+
+/// The file's [`Parsed`] shells, surfaces and unread faces.
+fn parse_shells(text: &str) -> std::result::Result<Parsed, String> {
     use truck_stepio::r#in::ruststep::tables::EntityTable;
     use truck_stepio::r#in::{
         BSplineSurfaceWithKnotsHolder as Knots, RationalBSplineSurfaceHolder as Rational,
@@ -482,11 +498,12 @@ fn parse_shells(text: &str) -> std::result::Result<(Vec<Shell>, Bare, Vec<Unread
         .map(|id| {
             table
                 .to_compressed_shell(&table.shell[id])
+                .map(|s| (*id, s))
                 .map_err(|e| format!("shell #{id}: {e}"))
         })
-        .collect::<std::result::Result<Vec<Shell>, String>>()?;
+        .collect::<std::result::Result<Vec<(u64, Shell)>, String>>()?;
     let mut bare = Vec::new();
-    if shells.iter().all(|s| s.faces.is_empty()) {
+    if shells.iter().all(|(_, s)| s.faces.is_empty()) {
         // Entity order; a surface truck cannot convert is left out, as faces are.
         let mut ids: Vec<u64> = table.b_spline_surface_with_knots.keys().copied().collect();
         ids.extend(table.rational_b_spline_surface.keys());

@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Writes plane_triangle_assembly.step: the part of plane_triangle.step (one planar triangle
+face, (0,0), (3,0), (0,2) in z = 0, its shape representation #10 with the origin placement #11)
+used twice in a sub-assembly `pair`, which is used once in the root assembly `frame`, in the
+AP214 assembly structure CAD systems write (NEXT_ASSEMBLY_USAGE_OCCURRENCE, a
+CONTEXT_DEPENDENT_SHAPE_REPRESENTATION of each usage, and a REPRESENTATION_RELATIONSHIP_WITH_
+TRANSFORMATION whose ITEM_DEFINED_TRANSFORMATION maps a placement of the component onto one of
+the parent):
+- usage 1 of the triangle in `pair`: placement at (10, 0, 0), rotated 90° about z (x ↦ y);
+- usage 2: placement at (0, 0, 5) with axis (1, 0, 0) and reference direction (0, 1, 0)
+  (local x ↦ y, y ↦ z, z ↦ x), its transformation's two items written the other way round
+  (the parent's placement first), as some writers do;
+- `pair` in `frame`: placement at (0, 100, 0), unrotated.
+So the file's two faces are the triangle moved by p ↦ (10, 100, 0) + (−p_y, p_x, p_z) and
+p ↦ (0, 100, 5) + (p_z, p_x, p_y).
+
+    python3 make_assembly.py data/step
+"""
+import pathlib
+import sys
+
+
+def main():
+    out = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
+    here = pathlib.Path(__file__).parent
+    text = (here / "plane_triangle.step").read_text()
+    ctx = "#73"  # the part's 3D context (millimetres), shared by the assemblies
+    extra = f"""#100 = PRODUCT('pair','pair','',(#8));
+#101 = PRODUCT_DEFINITION_FORMATION('','',#100);
+#102 = PRODUCT_DEFINITION('design','',#101,#9);
+#103 = PRODUCT_DEFINITION_SHAPE('','',#102);
+#104 = SHAPE_DEFINITION_REPRESENTATION(#103,#110);
+#110 = SHAPE_REPRESENTATION('pair',(#111,#120,#130),{ctx});
+#111 = AXIS2_PLACEMENT_3D('',#112,#113,#114);
+#112 = CARTESIAN_POINT('',(0.,0.,0.));
+#113 = DIRECTION('',(0.,0.,1.));
+#114 = DIRECTION('',(1.,0.,0.));
+#120 = AXIS2_PLACEMENT_3D('',#121,#122,#123);
+#121 = CARTESIAN_POINT('',(10.,0.,0.));
+#122 = DIRECTION('',(0.,0.,1.));
+#123 = DIRECTION('',(0.,1.,0.));
+#130 = AXIS2_PLACEMENT_3D('',#131,#132,#133);
+#131 = CARTESIAN_POINT('',(0.,0.,5.));
+#132 = DIRECTION('',(1.,0.,0.));
+#133 = DIRECTION('',(0.,1.,0.));
+#140 = NEXT_ASSEMBLY_USAGE_OCCURRENCE('1','triangle 1','',#102,#5,$);
+#141 = PRODUCT_DEFINITION_SHAPE('','',#140);
+#142 = ITEM_DEFINED_TRANSFORMATION('','',#11,#120);
+#143 = ( REPRESENTATION_RELATIONSHIP('','',#10,#110)
+REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#142) SHAPE_REPRESENTATION_RELATIONSHIP() );
+#144 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#143,#141);
+#150 = NEXT_ASSEMBLY_USAGE_OCCURRENCE('2','triangle 2','',#102,#5,$);
+#151 = PRODUCT_DEFINITION_SHAPE('','',#150);
+#152 = ITEM_DEFINED_TRANSFORMATION('','',#130,#11);
+#153 = ( REPRESENTATION_RELATIONSHIP('','',#10,#110)
+REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#152) SHAPE_REPRESENTATION_RELATIONSHIP() );
+#154 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#153,#151);
+#200 = PRODUCT('frame','frame','',(#8));
+#201 = PRODUCT_DEFINITION_FORMATION('','',#200);
+#202 = PRODUCT_DEFINITION('design','',#201,#9);
+#203 = PRODUCT_DEFINITION_SHAPE('','',#202);
+#204 = SHAPE_DEFINITION_REPRESENTATION(#203,#210);
+#210 = SHAPE_REPRESENTATION('frame',(#211,#220),{ctx});
+#211 = AXIS2_PLACEMENT_3D('',#112,#113,#114);
+#220 = AXIS2_PLACEMENT_3D('',#221,#113,#114);
+#221 = CARTESIAN_POINT('',(0.,100.,0.));
+#240 = NEXT_ASSEMBLY_USAGE_OCCURRENCE('3','pair','',#202,#102,$);
+#241 = PRODUCT_DEFINITION_SHAPE('','',#240);
+#242 = ITEM_DEFINED_TRANSFORMATION('','',#111,#220);
+#243 = ( REPRESENTATION_RELATIONSHIP('','',#110,#210)
+REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#242) SHAPE_REPRESENTATION_RELATIONSHIP() );
+#244 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#243,#241);
+ENDSEC;
+END-ISO-10303-21;"""
+    end = "ENDSEC;\nEND-ISO-10303-21;"
+    assert text.count(end) == 1
+    text = text.replace(end, extra)
+    (out / "plane_triangle_assembly.step").write_text(text + "\n")
+
+
+if __name__ == "__main__":
+    main()
