@@ -1,6 +1,7 @@
 //! Assembly placements of STEP files (issue #14): a part used several times in an assembly
 //! gives its faces once per use, each moved by the composed placements of its path to the
-//! root (`data/step/plane_triangle_assembly.step`, made by `make_assembly.py`).
+//! root, in the root's length unit (`data/step/plane_triangle_assembly.step` and its `_inch`
+//! variant, made by `make_assembly.py`).
 
 mod common;
 use common::{ellipgrid, grid_node as node, root, text};
@@ -48,6 +49,25 @@ fn a_part_used_twice_in_a_sub_assembly_is_gridded_at_both_places() {
                 .fold(0.0, f64::max);
             assert!(worst < 1e-11, "{n} × {n}: instance {k} is {worst:e} off");
         }
+    }
+    // The assemblies in inches, the part in millimetres: the faces in inches.
+    let inch: [fn([f64; 3]) -> [f64; 3]; 2] = [
+        |p| [10.0 - p[1] / 25.4, 100.0 + p[0] / 25.4, p[2] / 25.4],
+        |p| [p[2] / 25.4, 100.0 + p[0] / 25.4, 5.0 + p[1] / 25.4],
+    ];
+    let base = grids("plane_triangle.step", 9);
+    let placed = grids("plane_triangle_assembly_inch.step", 9);
+    assert_eq!(placed.len(), 2);
+    let b = &base[0].result.grid;
+    for (k, g) in placed.iter().enumerate() {
+        let g = &g.result.grid;
+        let worst = (0..g.len())
+            .map(|p| {
+                let (want, got) = (inch[k](node(b, p)), node(g, p));
+                (0..3).map(|c| (got[c] - want[c]).abs()).fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-11, "inches: instance {k} is {worst:e} off");
     }
     // Through the CLI: two faces listed, two blocks written.
     let dir = tempfile::tempdir().unwrap();

@@ -14,6 +14,10 @@ the parent):
 So the file's two faces are the triangle moved by p ↦ (10, 100, 0) + (−p_y, p_x, p_z) and
 p ↦ (0, 100, 5) + (p_z, p_x, p_y).
 
+plane_triangle_assembly_inch.step: the same with both assemblies measured in inches (a
+CONVERSION_BASED_UNIT 'INCH' of 25.4 mm), the part still in millimetres: the faces in inches,
+p ↦ (10 − p_y/25.4, 100 + p_x/25.4, p_z/25.4) and (p_z/25.4, 100 + p_x/25.4, 5 + p_y/25.4).
+
     python3 make_assembly.py data/step
 """
 import pathlib
@@ -23,9 +27,26 @@ import sys
 def main():
     out = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
     here = pathlib.Path(__file__).parent
-    text = (here / "plane_triangle.step").read_text()
-    ctx = "#73"  # the part's 3D context (millimetres), shared by the assemblies
-    extra = f"""#100 = PRODUCT('pair','pair','',(#8));
+    base = (here / "plane_triangle.step").read_text()
+    inch = """#400 = ( GEOMETRIC_REPRESENTATION_CONTEXT(3)
+GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#404)) GLOBAL_UNIT_ASSIGNED_CONTEXT((#401,#75,#76))
+REPRESENTATION_CONTEXT('Context #2','3D Context in inches') );
+#401 = ( CONVERSION_BASED_UNIT('INCH',#402) LENGTH_UNIT() NAMED_UNIT(#403) );
+#402 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#74);
+#403 = DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.);
+#404 = UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(4.E-09),#401,
+  'distance_accuracy_value','confusion accuracy');
+"""
+    # the part's 3D context #73 is in millimetres
+    for name, ctx, units in [("plane_triangle_assembly", "#73", ""),
+                             ("plane_triangle_assembly_inch", "#400", inch)]:
+        write(out / f"{name}.step", base, ctx, units)
+
+
+def write(path, text, ctx, units):
+    """The part of `text` in the two assemblies, whose representations use context `ctx`
+    (`units`: its entities, if new)."""
+    extra = units + f"""#100 = PRODUCT('pair','pair','',(#8));
 #101 = PRODUCT_DEFINITION_FORMATION('','',#100);
 #102 = PRODUCT_DEFINITION('design','',#101,#9);
 #103 = PRODUCT_DEFINITION_SHAPE('','',#102);
@@ -75,7 +96,7 @@ END-ISO-10303-21;"""
     end = "ENDSEC;\nEND-ISO-10303-21;"
     assert text.count(end) == 1
     text = text.replace(end, extra)
-    (out / "plane_triangle_assembly.step").write_text(text + "\n")
+    path.write_text(text + "\n")
 
 
 if __name__ == "__main__":

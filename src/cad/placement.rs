@@ -133,6 +133,18 @@ pub(super) fn shell_placements(
             continue;
         };
         let (c1, c2) = (space.find(r1), space.find(r2));
+        // a component measured in another length unit than its parent: scaled to the parent's
+        let unit = |r: u64| {
+            bodies
+                .get(&r)
+                .and_then(|p| p.first())
+                .and_then(|(_, a)| a.get(2).and_then(|c| reference(c)))
+                .and_then(|c| metres_per_unit(&bodies, c))
+        };
+        let scale = match (unit(r1), unit(r2)) {
+            (Some(a), Some(b)) if a != b => Matrix4::from_scale(a / b),
+            _ => Matrix4::identity(),
+        };
         // the standard: item₁ in rep_1 (the component); some writers swap the items
         let in_space = |item: u64, s: u64| {
             rep_items
@@ -144,7 +156,7 @@ pub(super) fn shell_placements(
         let Some(inv) = from.invert() else {
             continue;
         };
-        up.entry(c1).or_default().push((c2, id, to * inv));
+        up.entry(c1).or_default().push((c2, id, to * scale * inv));
     }
     let mut memo: HashMap<u64, Vec<Matrix4>> = HashMap::new();
     let mut out = HashMap::new();
@@ -302,6 +314,65 @@ fn numbers(bodies: &Bodies, id: u64, name: &str) -> Option<Vector3> {
         .collect::<Result<_, _>>()
         .ok()?;
     (v.len() == 3 && v.iter().all(|c| c.is_finite())).then(|| Vector3::new(v[0], v[1], v[2]))
+}
+
+/// Metres per length unit of the representation context `context` (its
+/// `GLOBAL_UNIT_ASSIGNED_CONTEXT`'s `LENGTH_UNIT`: an SI metre with its prefix, or a
+/// conversion-based unit such as the inch by its `LENGTH_MEASURE_WITH_UNIT`).
+fn metres_per_unit(bodies: &Bodies, context: u64) -> Option<f64> {
+    let parts = bodies.get(&context)?;
+    let (_, units) = parts
+        .iter()
+        .find(|(n, _)| *n == "GLOBAL_UNIT_ASSIGNED_CONTEXT")?;
+    list(units.first()?)
+        .into_iter()
+        .find_map(|u| length_unit(bodies, u, 0))
+}
+
+/// Metres per unit of the length unit `id` (`None` if it is not a length unit).
+fn length_unit(bodies: &Bodies, id: u64, depth: usize) -> Option<f64> {
+    let parts = bodies.get(&id)?;
+    if depth > 8 || !parts.iter().any(|(n, _)| *n == "LENGTH_UNIT") {
+        return None;
+    }
+    let arg = |name: &str, k: usize| {
+        parts
+            .iter()
+            .find(|(n, _)| *n == name)
+            .and_then(|(_, a)| a.get(k).copied())
+    };
+    if let Some(unit) = arg("SI_UNIT", 1) {
+        if unit != ".METRE." {
+            return None;
+        }
+        let prefix = match arg("SI_UNIT", 0)? {
+            "$" => 1.0,
+            ".KILO." => 1e3,
+            ".DECI." => 1e-1,
+            ".CENTI." => 1e-2,
+            ".MILLI." => 1e-3,
+            ".MICRO." => 1e-6,
+            ".NANO." => 1e-9,
+            _ => return None,
+        };
+        return Some(prefix);
+    }
+    let measure = bodies.get(&reference(arg("CONVERSION_BASED_UNIT", 1)?)?)?;
+    let [(_, m)] = measure.as_slice() else {
+        return None;
+    };
+    let value: f64 = m
+        .first()?
+        .trim()
+        .strip_prefix("LENGTH_MEASURE")?
+        .trim()
+        .strip_prefix('(')?
+        .strip_suffix(')')?
+        .trim()
+        .parse()
+        .ok()?;
+    let base = length_unit(bodies, reference(m.get(1)?)?, depth + 1)?;
+    (value.is_finite() && value > 0.0).then_some(value * base)
 }
 
 /// `(#1, #2, …)` as ids.
