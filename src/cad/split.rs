@@ -53,8 +53,8 @@ pub fn grid_face_blocks(
                 }
             }
             // Neither the corners by turning angle nor the cut: one block with other corners,
-            // then with its cusp as a collapsed side.
-            for sets in [Corners::Balanced, Corners::Collapsed] {
+            // then with its cusp as a collapsed side, then its tips.
+            for sets in [Corners::Balanced, Corners::Collapsed, Corners::Tips] {
                 let other = grid_face_by(face, (ni, nj), d.0, d.1, solver, place, sets);
                 if !folds(&other) && other.is_ok() {
                     return other.map(|g| vec![g]);
