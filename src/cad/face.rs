@@ -85,7 +85,8 @@ impl FaceGrid {
 ///
 /// A one-loop face is gridded on corners by turning angle ([`Corners::Turning`]); where every
 /// such try folds, on corner sets with balanced opposite sides ([`Corners::Balanced`]), then
-/// with its cusp as a collapsed side ([`Corners::Collapsed`]): the first of those that does
+/// with its cusp as a collapsed side ([`Corners::Collapsed`]), last with its tips collapsed
+/// ([`Corners::Tips`]): the first of those that does
 /// not fold is the grid, else the first rule's result stands (a face that does not fold on
 /// its first corners is never regridded).
 ///

@@ -5,7 +5,8 @@
 //! triangle there (as a C–O grid's pole, or a sharp trailing edge's H-topology), its grid
 //! lines fanning out of the point towards the opposite side. Four corners on such a face put
 //! one corner inside a smooth edge and leave the cusp a corner cell of a few degrees, which
-//! folds.
+//! folds. Last, where every other try folds, a vertex turning by more than 135° (a *tip*)
+//! is collapsed the same way, two of them (E1 and E2) first: a band pointed at both ends.
 
 use super::{FaceLoop, LoopPoint};
 
