@@ -15,7 +15,7 @@
 //! The result depends on neither the CAD parametrization nor the (u, v) grid, up to the
 //! discretization error (tests: `tests/step_faces.rs`).
 
-use super::trim::{CadSurface, FaceLoop, LoopPoint, CORNER_LIKE};
+use super::trim::{CadSurface, FaceLoop, LoopPoint, CORNER_LIKE, CUSP, TIP};
 use super::{quietly, Route, StepFace};
 use crate::case::DistributionSpec;
 use crate::elliptic::picard::PicardInfo;
@@ -85,7 +85,8 @@ impl FaceGrid {
 ///
 /// A one-loop face is gridded on corners by turning angle ([`Corners::Turning`]); where every
 /// such try folds, on corner sets with balanced opposite sides ([`Corners::Balanced`]), then
-/// with its cusp as a collapsed side ([`Corners::Collapsed`]): the first of those that does
+/// with its cusp as a collapsed side ([`Corners::Collapsed`]), last with its tips collapsed
+/// ([`Corners::Tips`]): the first of those that does
 /// not fold is the grid, else the first rule's result stands (a face that does not fold on
 /// its first corners is never regridded).
 ///
@@ -113,7 +114,7 @@ pub fn grid_face(
     if !folds(&one) || !matches!(face.route(), Route::Trimmed(_)) {
         return one;
     }
-    for sets in [Corners::Balanced, Corners::Collapsed] {
+    for sets in [Corners::Balanced, Corners::Collapsed, Corners::Tips] {
         let other = grid_face_by(face, (ni, nj), dist_i, dist_j, solver, place, sets);
         if !folds(&other) && other.is_ok() {
             return other;
@@ -145,6 +146,11 @@ pub enum Corners {
     /// (`FaceLoop::collapsed_at`; with a second cusp, that one as E2 in the first of the
     /// [`COLLAPSED`] sets): for faces whose grid folds with the corner sets above.
     Collapsed,
+    /// As [`Corners::Collapsed`] on the sharpest convex vertex turning by more than 135° (an
+    /// interior angle below 45°: a *tip*), a second such tip collapsed as E2 first, the sets
+    /// of [`Corners::Collapsed`] left out: the last try, for faces whose every other corner
+    /// set folds (bands pointed at both ends by 36° tips).
+    Tips,
 }
 
 /// Corner sets a face whose grid folds with its corners by turning angle tries at most
@@ -253,19 +259,26 @@ fn trimmed(
         // (by more than 20°), then balancing the sides along the cusp
         Corners::Collapsed => {
             lp.cusp = lp.collapsed_at();
-            if lp.cusp.is_none() {
+            let Some(k) = lp.cusp else {
                 return Err(Error::input(place, "no cusp to grid as a collapsed side"));
-            }
-            let k = lp.cusp.expect("a cusp");
+            };
+            quietly(|| collapsed_sets(&lp, k, CUSP)).map_err(|_| truck_failed(place))?
+        }
+        // the sharpest tip as side E1 (with a second tip as E2 first), the sets of
+        // Corners::Collapsed left out
+        Corners::Tips => {
+            let Some(k) = lp.sharpest_tip(TIP) else {
+                return Err(Error::input(place, "no tip to grid as a collapsed side"));
+            };
             quietly(|| {
-                // two cusps: both collapsed (E1 and E2) first
-                let mut sets: Vec<_> = lp.two_cusps(k).into_iter().collect();
-                sets.push(lp.corners(Some(CORNER_LIKE)));
-                for c in lp.collapsed_corners(k, COLLAPSED) {
-                    if sets.len() < COLLAPSED && !sets.iter().any(|s| s.0 == c.0) {
-                        sets.push(c);
-                    }
-                }
+                let mut tried = lp.clone();
+                tried.cusp = tried.collapsed_at();
+                let tried = tried
+                    .cusp
+                    .map_or(Vec::new(), |c| collapsed_sets(&tried, c, CUSP));
+                lp.cusp = Some(k);
+                let mut sets = collapsed_sets(&lp, k, TIP);
+                sets.retain(|s| !tried.iter().any(|t| t.0 == s.0));
                 sets
             })
             .map_err(|_| truck_failed(place))?
@@ -281,7 +294,7 @@ fn trimmed(
     };
     let count = match sets {
         Corners::Turning => TRIES.len(),
-        Corners::Balanced | Corners::Collapsed => others.len(),
+        Corners::Balanced | Corners::Collapsed | Corners::Tips => others.len(),
     };
     if count == 0 {
         return Err(Error::input(place, "no other corner set on the loop"));
@@ -294,7 +307,7 @@ fn trimmed(
                 quietly(|| lp.corners(TRIES[t].0)).map_err(|_| truck_failed(place))?,
                 TRIES[t].1,
             ),
-            Corners::Balanced | Corners::Collapsed => (others[t], 1),
+            Corners::Balanced | Corners::Collapsed | Corners::Tips => (others[t], 1),
         };
         if done.contains(&(corners.0, refine)) {
             continue;
@@ -325,6 +338,21 @@ fn trimmed(
         }
     }
     best.expect("at least one try")
+}
+
+/// The corner sets with the vertex `k` collapsed (side E1; `lp.cusp` is `k`), at most
+/// [`COLLAPSED`]: with a second vertex turning by more than `limit` collapsed as well (E2)
+/// first, then the other corners by turning (by more than 20°), then those balancing the
+/// sides along `k`.
+fn collapsed_sets(lp: &FaceLoop, k: usize, limit: f64) -> Vec<([LoopPoint; 4], [f64; 4])> {
+    let mut sets: Vec<_> = lp.two_cusps(k, limit).into_iter().collect();
+    sets.push(lp.corners(Some(CORNER_LIKE)));
+    for c in lp.collapsed_corners(k, COLLAPSED) {
+        if sets.len() < COLLAPSED && !sets.iter().any(|s| s.0 == c.0) {
+            sets.push(c);
+        }
+    }
+    sets
 }
 
 /// The tries of [`trimmed`] in turn: (least turning of a convex vertex to be a corner

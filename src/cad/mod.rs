@@ -7,7 +7,7 @@
 //! |---|---|
 //! | `mod` | [`read_step_faces`]: every face of every shell, numbered from 1 (or every bare B-spline surface of a file without faces); [`step_surface`] |
 //! | `patch` | untrimmed four-sided B-spline/NURBS faces: the check, [`grid_patch`] |
-//! | `trim` | a face's boundary loop on its surface: (u, v) by projection, corners (by turning angle, `trim/corners`; `trim/balance`: by balanced opposite sides, where those fold; `trim/cusp`: a cusp as a collapsed side, where those fold too), four sides |
+//! | `trim` | a face's boundary loop on its surface: (u, v) by projection, corners (by turning angle, `trim/corners`; `trim/balance`: by balanced opposite sides, where those fold; `trim/cusp`: a cusp as a collapsed side, where those fold too, last the tips), four sides |
 //! | `face` | [`grid_face`]: any one-loop face as a block face (Section 2 in (u, v), then Section 4) |
 //! | `holes` | a face with holes split into blocks: one-hole strips, an O-type ring of four around each hole |
 //! | `reentrant` | [`grid_face_split`]: a one-loop face whose one block folds, cut at its reentrant vertices into blocks |

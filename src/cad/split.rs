@@ -21,7 +21,7 @@ use ellipgrid_geometry::TruckSurface;
 /// The grids of a face, one per block: one block for a face of one loop ([`super::grid_face`])
 /// or, where that block folds, the face cut at its reentrant vertices into blocks
 /// ([`super::grid_face_split`], if those do not fold), else one block with other corners
-/// ([`Corners::Balanced`], then [`Corners::Collapsed`]),
+/// ([`Corners::Balanced`], then [`Corners::Collapsed`], then [`Corners::Tips`]),
 /// four around each hole for a face with holes, in the order of the holes, each ring's blocks
 /// one after the other around the hole; four across a closed band without a seam edge.
 /// Blocks run counterclockwise in (u, v) when the face's normal is the surface's, so that
@@ -53,8 +53,8 @@ pub fn grid_face_blocks(
                 }
             }
             // Neither the corners by turning angle nor the cut: one block with other corners,
-            // then with its cusp as a collapsed side.
-            for sets in [Corners::Balanced, Corners::Collapsed] {
+            // then with its cusp as a collapsed side, then its tips.
+            for sets in [Corners::Balanced, Corners::Collapsed, Corners::Tips] {
                 let other = grid_face_by(face, (ni, nj), d.0, d.1, solver, place, sets);
                 if !folds(&other) && other.is_ok() {
                     return other.map(|g| vec![g]);

@@ -5,7 +5,7 @@
 
 use super::edge::knots;
 use super::LoopEdge;
-pub(super) use cusp::CORNER_LIKE;
+pub(super) use cusp::{CORNER_LIKE, CUSP, TIP};
 use ellipgrid_geometry::{
     project_within, ArclengthMap, Curve, Surface, TruckCurve, TruckSurface, Vec3,
 };

@@ -62,10 +62,21 @@ impl fmt::Display for QualityReport {
         let min_max = |a: f64, b: f64| [("min", num(a)), ("max", num(b))];
         let mut folded = table_line("folded cells", &[("", self.folded_cells.to_string())]);
         folded += &first_cells(&self.first_folded, self.folded_cells);
-        let lines = [
+        let mut lines = vec![
             table_line("jacobian", &min_max(self.jacobian_min, self.jacobian_max)),
             table_line("scaled jacobian", &[("min", num(self.scaled_jacobian_min))]),
             folded,
+        ];
+        if self.collapsed_cells > 0 {
+            // a pole or a CAD face's cusp: its cells apart, as the volume report's flat edges
+            let n = self.collapsed_cells.to_string();
+            lines.push(format!(
+                "{}   (triangles at a side collapsed to a point; scaled jacobian min {} off them)",
+                table_line("collapsed-side cells", &[("", n)]),
+                num(self.scaled_jacobian_min_regular)
+            ));
+        }
+        lines.extend([
             table_line(
                 "skewness",
                 &[
@@ -79,7 +90,7 @@ impl fmt::Display for QualityReport {
                 &[("i", num(self.growth_i_max)), ("j", num(self.growth_j_max))],
             ),
             table_line("spacing", &min_max(self.min_spacing, self.max_spacing)),
-        ];
+        ]);
         for l in lines {
             writeln!(f, "{}", l.trim_end())?;
         }

@@ -141,6 +141,16 @@ pub struct QualityReport {
     /// Cells (i, j) (lower-left node) of the first [`MAX_FIRST_FOLDED`] folded cells, in index
     /// order i + (ni − 1) j.
     pub first_folded: Vec<[usize; 2]>,
+    /// Cells along a block side collapsed to a point (a pole, or a CAD face's cusp or tips
+    /// gridded as a collapsed side): triangles, evaluated as such (module docs, "Degenerate
+    /// input"), counted apart here; 0 without such a side.
+    #[serde(default)]
+    pub collapsed_cells: usize,
+    /// Smallest scaled Jacobian over the cells that are not on a collapsed side (the
+    /// triangles' angle at the point is the side's angle shared out among them);
+    /// `scaled_jacobian_min` without such a side.
+    #[serde(with = "json_f64", default = "json_f64::nan")]
+    pub scaled_jacobian_min_regular: f64,
     /// Largest equiangular skewness (0: rectangle; > 1 only for non-convex or folded cells).
     #[serde(with = "json_f64")]
     pub skewness_max: f64,
@@ -244,8 +254,14 @@ fn row(nd: &Nodes, j: usize, s: f64) -> CellStats<2> {
     for i in 0..nd.ni - 1 {
         let c = nd.cell(i, j);
         let n = nd.normal(&c);
-        let e = eval_cell(&c, n, s, nd.pole_edge(i, j));
+        let pole = nd.pole_edge(i, j);
+        let e = eval_cell(&c, n, s, pole);
         a.add(e.jmin, e.jmax, e.smin, e.skew, e.aspect);
+        if pole.is_some() {
+            a.collapsed += 1;
+        } else {
+            a.smin_regular = nmin(a.smin_regular, e.smin);
+        }
         let corner_ok = !e.folded;
         if !corner_ok || (nd.surface && nd.flipped(i, j, n)) {
             a.folded.push([i, j]);
@@ -312,6 +328,8 @@ fn report(nd: &Nodes) -> QualityReport {
             scaled_jacobian_min: nan,
             folded_cells: 0,
             first_folded: Vec::new(),
+            collapsed_cells: 0,
+            scaled_jacobian_min_regular: nan,
             skewness_max: nan,
             skewness_mean: nan,
             orthogonality: Edge::ALL
@@ -361,6 +379,8 @@ fn report(nd: &Nodes) -> QualityReport {
         scaled_jacobian_min: a.smin,
         folded_cells: a.folded.count,
         first_folded: a.folded.first,
+        collapsed_cells: a.collapsed,
+        scaled_jacobian_min_regular: a.smin_regular,
         skewness_max: a.skew_max,
         skewness_mean: a.skew_sum / cells as f64,
         orthogonality: Edge::ALL

@@ -47,6 +47,10 @@ pub(super) struct CellStats<const N: usize> {
     pub skew_sum: f64,
     pub aspect_max: f64,
     pub folded: Listed<N>,
+    /// Cells on a block side collapsed to a point, and the smallest scaled Jacobian over
+    /// the others (planar and surface reports).
+    pub collapsed: usize,
+    pub smin_regular: f64,
 }
 
 impl<const N: usize> CellStats<N> {
@@ -59,6 +63,8 @@ impl<const N: usize> CellStats<N> {
             skew_sum: 0.0,
             aspect_max: f64::NEG_INFINITY,
             folded: Listed::new(),
+            collapsed: 0,
+            smin_regular: f64::INFINITY,
         }
     }
 
@@ -81,6 +87,8 @@ impl<const N: usize> CellStats<N> {
         self.skew_sum += b.skew_sum;
         self.aspect_max = nmax(self.aspect_max, b.aspect_max);
         self.folded.merge(b.folded);
+        self.collapsed += b.collapsed;
+        self.smin_regular = nmin(self.smin_regular, b.smin_regular);
     }
 }
 

@@ -442,6 +442,25 @@ fn degenerate_input_does_not_panic() {
     assert!(r.skewness_max.is_finite());
     assert!(r.scaled_jacobian_min > 0.3, "{r}");
     assert_eq!(r.orthogonality[2].nodes, 0, "a pole has no tangent");
+    // its 3 triangles counted apart, the unit squares above them regular
+    assert_eq!(r.collapsed_cells, 3, "{r}");
+    assert_eq!(r.scaled_jacobian_min_regular, 1.0, "{r}");
+    assert!(
+        format!("{r}").contains("collapsed-side cells               3"),
+        "{r}"
+    );
+    // a report without the fields (written before them) reads as no collapsed side
+    let mut v = serde_json::to_value(&r).unwrap();
+    let o = v.as_object_mut().unwrap();
+    o.remove("collapsed_cells");
+    o.remove("scaled_jacobian_min_regular");
+    let back: QualityReport = serde_json::from_value(v).unwrap();
+    assert_eq!(back.collapsed_cells, 0);
+    assert!(back.scaled_jacobian_min_regular.is_nan());
+    let plain = quality2d(&cartesian(4, 4, 1.0, 1.0));
+    assert_eq!(plain.collapsed_cells, 0);
+    assert_eq!(plain.scaled_jacobian_min_regular, plain.scaled_jacobian_min);
+    assert!(!format!("{plain}").contains("collapsed-side"), "{plain}");
     g.set(3, 0, [3.0, 0.0]);
     let r = quality2d(&g);
     assert_eq!(r.first_folded, vec![[0, 0], [1, 0]]);

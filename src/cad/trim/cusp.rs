@@ -5,13 +5,19 @@
 //! triangle there (as a C–O grid's pole, or a sharp trailing edge's H-topology), its grid
 //! lines fanning out of the point towards the opposite side. Four corners on such a face put
 //! one corner inside a smooth edge and leave the cusp a corner cell of a few degrees, which
-//! folds.
+//! folds. Last, where every other try folds, a vertex turning by more than 135° (a *tip*)
+//! is collapsed the same way, two of them (E1 and E2) first: a band pointed at both ends.
 
 use super::{FaceLoop, LoopPoint};
 
 /// A convex vertex turning by more than this (radians: an interior angle below 30°) is a
 /// cusp.
 pub const CUSP: f64 = 150.0 * std::f64::consts::PI / 180.0;
+
+/// A convex vertex turning by more than this (radians: an interior angle below 45°) is a
+/// tip: the last try of a face whose every other corner set folds has its sharpest tip
+/// collapsed (with a second tip as well first: a band pointed at both ends).
+pub const TIP: f64 = 135.0 * std::f64::consts::PI / 180.0;
 
 /// A convex vertex turning by more than this (radians, 20°) is corner-like (the weakest turn
 /// of a corner in [`FaceLoop::corners`]'s last rule).
@@ -97,16 +103,31 @@ impl FaceLoop<'_> {
         out
     }
 
+    /// The sharpest convex vertex turning by more than `limit` (radians; [`TIP`]), if any.
+    pub fn sharpest_tip(&self, limit: f64) -> Option<usize> {
+        let ccw = self.signed_area(self.scale) > 0.0;
+        if self.pole.is_some() {
+            return None;
+        }
+        (0..self.len())
+            .filter(|&k| !self.reentrant(k, ccw))
+            .map(|k| (k, self.turning(k)))
+            .filter(|p| p.1 > limit)
+            .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
+            .map(|p| p.0)
+    }
+
     /// The corner set [k, m, m, k] with the cusp `k` and a second cusp `m` (the other convex
-    /// vertex turning most, if by more than [`CUSP`]) as the collapsed sides E1 and E2: a
-    /// lens between two tangent edges, as SolidWorks writes cone faces ending in two cusps.
-    pub fn two_cusps(&self, k: usize) -> Option<([LoopPoint; 4], [f64; 4])> {
+    /// vertex turning most, if by more than `limit` radians: [`CUSP`], or [`TIP`] in the last
+    /// try) as the collapsed sides E1 and E2: a lens between two tangent edges, as SolidWorks
+    /// writes cone faces ending in two cusps, or a band pointed at both ends.
+    pub fn two_cusps(&self, k: usize, limit: f64) -> Option<([LoopPoint; 4], [f64; 4])> {
         let ccw = self.signed_area(self.scale) > 0.0;
         let (m, t) = (0..self.len())
             .filter(|&m| m != k && !self.reentrant(m, ccw))
             .map(|m| (m, self.turning(m)))
             .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))?;
-        if t <= CUSP {
+        if t <= limit {
             return None;
         }
         let at = |edge| LoopPoint { edge, sigma: 0.0 };
