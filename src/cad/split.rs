@@ -24,6 +24,9 @@ use ellipgrid_geometry::TruckSurface;
 /// ([`Corners::Balanced`], then [`Corners::Collapsed`], then [`Corners::Tips`]),
 /// four around each hole for a face with holes, in the order of the holes, each ring's blocks
 /// one after the other around the hole; four across a closed band without a seam edge.
+/// An untrimmed patch whose one block folds and that has creases is cut along them into
+/// blocks ([`super::grid_creased`]) if those have fewer folded cells in all (sub-patches
+/// without area left out).
 /// Blocks run counterclockwise in (u, v) when the face's normal is the surface's, so that
 /// every block's normal is the face's.
 ///
@@ -58,6 +61,25 @@ pub fn grid_face_blocks(
                 let other = grid_face_by(face, (ni, nj), d.0, d.1, solver, place, sets);
                 if !folds(&other) && other.is_ok() {
                     return other.map(|g| vec![g]);
+                }
+            }
+        }
+        return one.map(|g| vec![g]);
+    }
+    if let Route::Patch = face.route() {
+        // An untrimmed patch whose one block folds is cut along its creases into blocks
+        // ([`super::crease`]), if those fold less; patches that do not fold are never cut.
+        let one = super::grid_face(face, (ni, nj), dist_i, dist_j, solver, place);
+        if folds(&one) && !super::creases(face).is_empty() {
+            let cut = super::grid_creased(face, (ni, nj), dist_i, dist_j, solver, place);
+            if let Ok((gs, _)) = cut {
+                let cells =
+                    |gs: &[FaceGrid]| -> usize { gs.iter().map(|g| g.quality.folded_cells).sum() };
+                let before = one
+                    .as_ref()
+                    .map_or(usize::MAX, |g| cells(std::slice::from_ref(g)));
+                if cells(&gs) < before {
+                    return Ok(gs);
                 }
             }
         }

@@ -124,7 +124,7 @@ fn list(file: &Path) -> Result<()> {
         let what = match f.route() {
             Route::Patch => {
                 let (p, q) = f.surface.as_ref().map_or((0, 0), |s| s.degrees());
-                format!("four-sided patch, degrees {p} × {q}")
+                format!("four-sided patch, degrees {p} × {q}{}", creases(&f))
             }
             Route::Trimmed(n) => format!(
                 "block face: one loop of {n} edge{}",
@@ -143,6 +143,23 @@ fn list(file: &Path) -> Result<()> {
         println!("not read: {u}");
     }
     Ok(())
+}
+
+/// The creases of a patch for `step list`: "; creases u = … (normal turning …)" or nothing.
+fn creases(f: &StepFace) -> String {
+    let c: Vec<String> = cad::creases(f).iter().map(|c| c.to_string()).collect();
+    match c.len() {
+        0 => String::new(),
+        1 => format!("; a crease at {}", c[0]),
+        _ => format!("; creases at {}", c.join(", ")),
+    }
+}
+
+/// Sub-patches of a patch cut along all its creases (1 without creases).
+fn crease_pieces(f: &StepFace) -> usize {
+    let c = cad::creases(f);
+    let n = |d: usize| c.iter().filter(|c| c.dir == d).count() + 1;
+    n(0) * n(1)
 }
 
 fn spacing(first: Option<f64>, last: Option<f64>) -> DistributionSpec {
@@ -183,6 +200,7 @@ fn grid(a: &GridArgs) -> Result<()> {
         let at = format!("{name}: face {} (--ni, --nj)", f.index);
         let blocks = match f.route() {
             Route::Holes(n) => 4 * n,
+            Route::Patch => crease_pieces(f),
             _ => 1,
         };
         for _ in 0..blocks {
@@ -239,6 +257,21 @@ fn grid(a: &GridArgs) -> Result<()> {
         };
         // A face of several blocks (holes) is written, or left out, as a whole.
         let several = grids.len() > 1;
+        if several && !a.quiet && f.route() == Route::Patch {
+            // a patch cut along its creases (its one block folds)
+            let left_out = crease_pieces(f) - grids.len();
+            println!(
+                "face{}: cut{} into {} blocks{}",
+                f.index,
+                creases(f).replacen(";", "", 1),
+                grids.len(),
+                if left_out > 0 {
+                    format!(" ({left_out} sub-patch(es) without area left out)")
+                } else {
+                    String::new()
+                }
+            );
+        }
         let mut face_blocks = Vec::with_capacity(grids.len());
         let mut face_folded = false;
         for (b, g) in grids.into_iter().enumerate() {

@@ -357,6 +357,9 @@ impl BSplineSurf {
     }
 }
 
+#[path = "bspline_split.rs"]
+mod split;
+
 #[cfg(test)]
 #[path = "bspline_tests.rs"]
 mod tests;

@@ -1,0 +1,328 @@
+//! Untrimmed patches that are really several faces: a B-spline patch whose surface turns
+//! sharply across an interior iso-line (OpenVSP writes a whole wing as one patch, its flat
+//! root and tip caps as the first and last spanwise knot spans, the skin meeting them at
+//! ~90°), cut along those *creases* into sub-patches, each gridded as its own block.
+//!
+//! A crease is an interior knot of multiplicity ≥ the degree (the surface is at most C0
+//! there: [`BSplineSurf::c0_knots`]) where the two sides meet (a C0 line, not a gap) and the
+//! surface normal turns by more than [`CREASE_TURN`] at every sample of the iso-line where
+//! both sides' normals are defined ([`SAMPLES`] + 1 samples; poles are skipped). Smaller
+//! turns (the kinks between the sections of a wing with dihedral or sweep breaks) are not
+//! creases.
+//!
+//! Where the patch has creases, C0 iso-lines along which a sub-patch between them collapses
+//! to one point are cut too ([`Crease::pole`]): OpenVSP's caps are lenses between the
+//! airfoil and its camber line traversed twice, whose leading-edge iso-line is one point; a
+//! grid line must run along it, or the cells beside it fold. (Such a line must be a C0 knot,
+//! as in OpenVSP's piecewise Bézier sections: no knots are inserted.)
+//!
+//! The sub-patches ([`BSplineSurf::split_at`]: the same control points, no approximation)
+//! are gridded as untrimmed patches ([`grid_patch`]), each with the face's `ni × nj` nodes
+//! and distributions (a spacing given at a side's ends applies at each block's ends, the
+//! crease too). A sub-patch without area (a row of control points doubled back onto a line
+//! or a point) is left out, as [`super::patch::has_area`] refuses such bare patches. Blocks
+//! that meet along a crease get the same nodes there: each side is placed by its own
+//! arclength on the same curve (the pieces share its control points), and the second
+//! block's side is then set to the first's bit for bit (they differ by round-off only;
+//! more than [`MATCH`] of the patch's size is an error).
+
+use super::face::FaceGrid;
+use super::patch::{grid_patch, has_area};
+use super::{Route, StepFace};
+use crate::case::DistributionSpec;
+use crate::grid::Edge;
+use crate::solve::LinearSolver;
+use crate::{Error, Result};
+use ellipgrid_geometry::{BSplineSurf, Surface, Vec3};
+use std::fmt;
+
+/// Smallest turn of the normal (degrees) across a C0 iso-line, at every sample, that makes
+/// it a crease.
+pub const CREASE_TURN: f64 = 30.0;
+
+/// Intervals along an iso-line at which its turn is sampled.
+pub const SAMPLES: usize = 64;
+
+/// Largest distance (relative to the patch's sampled diameter) between the two sides of a C0
+/// iso-line, and between two blocks' nodes on a shared crease before they are made equal.
+const MATCH: f64 = 1e-9;
+
+/// One crease of a patch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Crease {
+    /// The iso-line's direction: 0 for u = `at`, 1 for v = `at`.
+    pub dir: usize,
+    /// Its normalized parameter (the patch's domain is [0, 1]²).
+    pub at: f64,
+    /// Smallest and largest turn of the normal across it over the samples, degrees (NaN
+    /// where no sample has both normals).
+    pub turn: [f64; 2],
+    /// Not a crease but a C0 iso-line along which a sub-patch between creases collapses to
+    /// one point (the leading edge of a wing's cap: the cap, a lens between the airfoil and
+    /// its camber line traversed twice, is cut there into two halves with cusps at both
+    /// ends); the whole patch is cut along it.
+    pub pole: bool,
+}
+
+impl fmt::Display for Crease {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let line = format!("{} = {:.4}", ["u", "v"][self.dir], self.at);
+        if self.pole {
+            write!(f, "{line} (a cap collapses to a point along it)")
+        } else {
+            let [a, b] = self.turn;
+            write!(f, "{line} (normal turning {a:.0}°–{b:.0}°)")
+        }
+    }
+}
+
+/// The creases of an untrimmed patch (a face whose [`Route`] is a patch), u lines first, in
+/// parameter order; none for any other face.
+pub fn creases(face: &StepFace) -> Vec<Crease> {
+    match (&face.surface, face.route()) {
+        (Some(s), Route::Patch) => surface_creases(s),
+        _ => Vec::new(),
+    }
+}
+
+/// The creases of a B-spline surface and, if it has any, the C0 iso-lines along which a
+/// sub-patch between them collapses to a point ([`Crease::pole`]); u lines first, each
+/// direction in parameter order (see the module doc).
+pub fn surface_creases(s: &BSplineSurf) -> Vec<Crease> {
+    let size = diameter(s);
+    let mut out = Vec::new();
+    let mut candidates = [Vec::new(), Vec::new()];
+    for (dir, cand) in candidates.iter_mut().enumerate() {
+        let cuts = s.c0_knots(dir);
+        let Ok(pieces) = s.split_at(dir, &cuts) else {
+            continue;
+        };
+        for (k, &at) in cuts.iter().enumerate() {
+            let t = turn(&pieces[k], &pieces[k + 1], dir, size);
+            match t {
+                Some(turn) if turn[0] > CREASE_TURN => out.push(Crease {
+                    dir,
+                    at,
+                    turn,
+                    pole: false,
+                }),
+                // a C0 line (no gap), not a crease
+                Some(turn) => cand.push((at, turn)),
+                None if meets(s, dir, at, size) => cand.push((at, [f64::NAN; 2])),
+                None => {}
+            }
+        }
+    }
+    if out.is_empty() {
+        return out;
+    }
+    // Lines across which a sub-patch between creases collapses: cut along them too.
+    for (dir, cand) in candidates.iter().enumerate() {
+        let other = 1 - dir;
+        let mut ends: Vec<f64> = out
+            .iter()
+            .filter(|c| c.dir == other)
+            .map(|c| c.at)
+            .collect();
+        ends.insert(0, 0.0);
+        ends.push(1.0);
+        for &(at, turn) in cand {
+            let collapses = ends.windows(2).any(|w| {
+                let p = |t: f64| {
+                    let t = w[0] + t * (w[1] - w[0]);
+                    if dir == 0 {
+                        s.point(at, t)
+                    } else {
+                        s.point(t, at)
+                    }
+                };
+                let p0 = p(0.0);
+                (1..=16).all(|m| (p(m as f64 / 16.0) - p0).norm() <= MATCH * size)
+            });
+            if collapses {
+                out.push(Crease {
+                    dir,
+                    at,
+                    turn,
+                    pole: true,
+                });
+            }
+        }
+    }
+    out.sort_by(|a, b| a.dir.cmp(&b.dir).then(a.at.total_cmp(&b.at)));
+    out
+}
+
+/// Whether the two sides of the C0 iso-line `dir` = `at` meet (not a gap) where no sample
+/// has both normals.
+fn meets(s: &BSplineSurf, dir: usize, at: f64, size: f64) -> bool {
+    let Ok(p) = s.split_at(dir, &[at]) else {
+        return false;
+    };
+    (0..=SAMPLES).all(|m| {
+        let t = m as f64 / SAMPLES as f64;
+        let (a, b) = if dir == 0 {
+            (p[0].point(1.0, t), p[1].point(0.0, t))
+        } else {
+            (p[0].point(t, 1.0), p[1].point(t, 0.0))
+        };
+        (a - b).norm() <= MATCH * size
+    })
+}
+
+/// Diameter of a 17 × 17 sample of the surface.
+fn diameter(s: &dyn Surface) -> f64 {
+    let (lo, hi) = (0..=16 * 16 + 16).fold(
+        (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)),
+        |(lo, hi), k| {
+            let p = s.point((k % 17) as f64 / 16.0, (k / 17) as f64 / 16.0);
+            (lo.inf(&p), hi.sup(&p))
+        },
+    );
+    (hi - lo).norm()
+}
+
+/// Smallest and largest turn (degrees) of the normal from `a`'s end to `b`'s start in
+/// direction `dir`, over the samples where both normals are defined; `None` if the two do not
+/// meet (a gap) or no sample has both normals.
+fn turn(a: &BSplineSurf, b: &BSplineSurf, dir: usize, size: f64) -> Option<[f64; 2]> {
+    let at = |s: &BSplineSurf, end: f64, t: f64| {
+        if dir == 0 {
+            s.eval(end, t)
+        } else {
+            s.eval(t, end)
+        }
+    };
+    let mut range = [f64::INFINITY, f64::NEG_INFINITY];
+    for m in 0..=SAMPLES {
+        let t = m as f64 / SAMPLES as f64;
+        let (p, q) = (at(a, 1.0, t), at(b, 0.0, t));
+        if (p.x - q.x).norm() > MATCH * size {
+            return None;
+        }
+        let normal = |e: &ellipgrid_geometry::SurfacePoint| {
+            let n = e.xu.cross(&e.xv);
+            (n.norm() > 1e-8 * e.xu.norm() * e.xv.norm()).then(|| n.normalize())
+        };
+        if let (Some(n), Some(k)) = (normal(&p), normal(&q)) {
+            let deg = n.dot(&k).clamp(-1.0, 1.0).acos().to_degrees();
+            range = [range[0].min(deg), range[1].max(deg)];
+        }
+    }
+    range[0].is_finite().then_some(range)
+}
+
+/// The sub-patches of `s` cut along `creases`: `rows[a][b]` is the a-th piece in u, b-th in
+/// v.
+fn pieces(s: &BSplineSurf, creases: &[Crease]) -> Result<Vec<Vec<BSplineSurf>>> {
+    let cuts = |d: usize| -> Vec<f64> {
+        creases
+            .iter()
+            .filter(|c| c.dir == d)
+            .map(|c| c.at)
+            .collect()
+    };
+    let geo = |e| Error::Geometry {
+        place: "crease split".into(),
+        source: e,
+    };
+    let (cu, cv) = (cuts(0), cuts(1));
+    s.split_at(0, &cu)
+        .map_err(geo)?
+        .iter()
+        .map(|row| row.split_at(1, &cv).map_err(geo))
+        .collect()
+}
+
+/// An untrimmed patch with creases gridded as blocks, one per sub-patch with area, in the
+/// order of u pieces, then v pieces within each (see the module doc); the number of
+/// sub-patches left out for having no area.
+///
+/// # Errors
+/// [`Error::Input`] at `place` if the face has no creases, no sub-patch has area, or two
+/// blocks' nodes on a shared crease differ by more than round-off; those of [`grid_patch`]
+/// (at `place, block k`).
+pub fn grid_creased(
+    face: &StepFace,
+    (ni, nj): (usize, usize),
+    dist_i: &DistributionSpec,
+    dist_j: &DistributionSpec,
+    solver: &mut dyn LinearSolver,
+    place: &str,
+) -> Result<(Vec<FaceGrid>, usize)> {
+    let creases = creases(face);
+    let Some(s) = face.surface.as_ref().filter(|_| !creases.is_empty()) else {
+        return Err(Error::input(place, "not a patch with creases"));
+    };
+    let size = diameter(s);
+    let rows = pieces(s, &creases)?;
+    let mut results = Vec::new();
+    // the block index of each sub-patch, if gridded
+    let mut block: Vec<Vec<Option<usize>>> = Vec::with_capacity(rows.len());
+    let mut skipped = 0;
+    for row in &rows {
+        let mut ids = Vec::with_capacity(row.len());
+        for piece in row {
+            if has_area(piece).is_err() {
+                skipped += 1;
+                ids.push(None);
+                continue;
+            }
+            let at = format!("{place}, block {}", results.len());
+            results.push(grid_patch(piece, (ni, nj), dist_i, dist_j, solver, &at)?);
+            ids.push(Some(results.len() - 1));
+        }
+        block.push(ids);
+    }
+    if results.is_empty() {
+        return Err(Error::input(
+            place,
+            "no sub-patch between its creases has area",
+        ));
+    }
+    // Shared crease sides: the lower block's E2 (E4) onto the upper block's E1 (E3).
+    for (a, ids) in block.iter().enumerate() {
+        for (b, id) in ids.iter().enumerate() {
+            let Some(k) = *id else { continue };
+            let below = [
+                (
+                    a.checked_sub(1).and_then(|a| block[a][b]),
+                    Edge::E2,
+                    Edge::E1,
+                ),
+                (b.checked_sub(1).and_then(|b| ids[b]), Edge::E4, Edge::E3),
+            ];
+            for (from, e, to) in below {
+                let Some(from) = from else { continue };
+                let src = results[from].grid.edge(e);
+                let g = &mut results[k].grid;
+                let far = src
+                    .iter()
+                    .zip(g.edge(to))
+                    .map(|(p, q)| (0..3).map(|c| (p[c] - q[c]).powi(2)).sum::<f64>().sqrt())
+                    .fold(0.0, f64::max);
+                if far.partial_cmp(&(MATCH * size)) != Some(std::cmp::Ordering::Less) {
+                    return Err(Error::input(
+                        format!("{place}, block {k}"),
+                        format!(
+                            "its nodes on the crease are {far:.3e} from block {from}'s \
+                             (a bug: they should differ by round-off only)"
+                        ),
+                    ));
+                }
+                for (m, p) in src.into_iter().enumerate() {
+                    let (i, j) = match to {
+                        Edge::E1 => (0, m),
+                        _ => (m, 0),
+                    };
+                    g.set(i, j, p);
+                }
+            }
+        }
+    }
+    let grids = results
+        .into_iter()
+        .map(|r| FaceGrid::new(r, Vec::new(), 0.0, None))
+        .collect();
+    Ok((grids, skipped))
+}
