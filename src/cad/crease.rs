@@ -234,6 +234,18 @@ fn pieces(s: &BSplineSurf, creases: &[Crease]) -> Result<Vec<Vec<BSplineSurf>>> 
         .collect()
 }
 
+/// A sub-patch whose diameter is at most this fraction of the patch's is one point (the
+/// round-off of the split: OpenVSP's caps end in trailing-edge pieces 1e-11 across on a
+/// 200-long wing).
+const POINT: f64 = 1e-9;
+
+/// Whether a sub-patch of a patch of diameter `size` is left out: it has no area, or it is of
+/// round-off size (a cap's trailing-edge point, which [`has_area`] alone takes for a tiny
+/// surface).
+fn negligible(piece: &dyn Surface, size: f64) -> bool {
+    diameter(piece) <= POINT * size || has_area(piece).is_err()
+}
+
 /// An untrimmed patch with creases gridded as blocks, one per sub-patch with area, in the
 /// order of u pieces, then v pieces within each (see the module doc); the number of
 /// sub-patches left out for having no area.
@@ -263,7 +275,7 @@ pub fn grid_creased(
     for row in &rows {
         let mut ids = Vec::with_capacity(row.len());
         for piece in row {
-            if has_area(piece).is_err() {
+            if negligible(piece, size) {
                 skipped += 1;
                 ids.push(None);
                 continue;
@@ -325,4 +337,47 @@ pub fn grid_creased(
         .map(|r| FaceGrid::new(r, Vec::new(), 0.0, None))
         .collect();
     Ok((grids, skipped))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use truck_geometry::prelude::{BSplineSurface, KnotVec, Point3};
+
+    fn bilinear(p: [[f64; 3]; 4]) -> BSplineSurf {
+        let q = |k: usize| Point3::new(p[k][0], p[k][1], p[k][2]);
+        let s = BSplineSurface::new(
+            (KnotVec::bezier_knot(1), KnotVec::bezier_knot(1)),
+            vec![vec![q(0), q(1)], vec![q(2), q(3)]],
+        );
+        BSplineSurf::from_truck_bspline(&s).unwrap()
+    }
+
+    #[test]
+    fn round_off_pieces_are_points() {
+        // the trailing-edge piece of the 777 tip cap: a point at (209.6, 35.1, 6.9) with
+        // round-off of ~1e-11 between its corners, on a wing ~200 across
+        let c = [209.575, 35.05549, 6.92673];
+        let e = 1e-11;
+        let dot = bilinear([
+            c,
+            [c[0] + e, c[1], c[2] + 0.3 * e],
+            [c[0] - 0.7 * e, c[1], c[2] - e],
+            [c[0] + 0.2 * e, c[1], c[2] + e],
+        ]);
+        assert!(
+            has_area(&dot).is_ok(),
+            "has_area alone takes it for a surface"
+        );
+        assert!(negligible(&dot, 200.0));
+        let square = bilinear([
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ]);
+        assert!(!negligible(&square, 200.0));
+        let line = bilinear([[0.0; 3], [1.0, 0.0, 0.0], [0.0; 3], [1.0, 0.0, 0.0]]);
+        assert!(negligible(&line, 1.0));
+    }
 }
