@@ -296,6 +296,19 @@ pub fn step_from_text(text: &str, path: &Path) -> Result<StepFaces> {
     let ids: Vec<u64> = shells.iter().map(|(id, _)| *id).collect();
     let placed = placement::shell_placements(&text, &ids).map_err(|m| Error::format(path, m))?;
     let mut faces = Vec::new();
+    let placed_faces: usize = shells
+        .iter()
+        .map(|(id, s)| s.faces.len() * placed[id].len())
+        .sum();
+    if placed_faces > placement::MAX_FACES {
+        return Err(Error::format(
+            path,
+            format!(
+                "the assembly places {placed_faces} faces (at most {} are read)",
+                placement::MAX_FACES
+            ),
+        ));
+    }
     for (id, shell) in &shells {
         for m in &placed[id] {
             let moved;

@@ -23,6 +23,10 @@ use truck_geometry::prelude::{
 /// The most instances of one shell (a bound on the work of a pathological assembly tree).
 pub(super) const MAX_INSTANCES: usize = 10_000;
 
+/// The most faces an assembly may place in all (each a copy of its shell's face: a bound on
+/// the memory of a file that uses a large part very many times).
+pub(super) const MAX_FACES: usize = 200_000;
+
 /// Entity bodies by id: each simple instance as one `(NAME, args)` part, a complex one as its
 /// partial entities.
 type Bodies<'a> = HashMap<u64, Vec<(&'a str, Vec<&'a str>)>>;
