@@ -505,10 +505,6 @@ fn parse_shells(text: &str) -> std::result::Result<Parsed, String> {
     let table = Table::from_data_section(data);
     let mut ids: Vec<&u64> = table.shell.keys().collect();
     ids.sort();
-    let unread = ids
-        .iter()
-        .flat_map(|id| unread::unread_faces(&table, **id, &table.shell[id], text))
-        .collect();
     let shells = ids
         .into_iter()
         .map(|id| {
@@ -518,6 +514,12 @@ fn parse_shells(text: &str) -> std::result::Result<Parsed, String> {
                 .map_err(|e| format!("shell #{id}: {e}"))
         })
         .collect::<std::result::Result<Vec<(u64, Shell)>, String>>()?;
+    // only a shell that lost faces is checked face by face (each surface converted again)
+    let unread = shells
+        .iter()
+        .filter(|(id, s)| s.faces.len() < table.shell[id].cfs_faces.len())
+        .flat_map(|(id, _)| unread::unread_faces(&table, *id, &table.shell[id], text))
+        .collect();
     let mut bare = Vec::new();
     if shells.iter().all(|(_, s)| s.faces.is_empty()) {
         // Entity order; a surface truck cannot convert is left out, as faces are.
