@@ -309,10 +309,19 @@ fn grid(a: &GridArgs) -> Result<()> {
                         s.iter().all(|p| *p == s[0])
                     };
                     if !g.corner_angles[0].is_nan() && point(Edge::E1) {
+                        // a cusp turns by more than 150° (an interior angle below 30°); a
+                        // sharp vertex collapsed by the last try (`Corners::Tips`) is a tip
+                        let name = |turn: f64| if turn > 150.0 { "cusp" } else { "tip" };
+                        let first = name(g.corner_angles[0]);
                         let sides = if point(Edge::E2) {
-                            "sides E1 and E2 collapsed to the cusps"
+                            let second = name(g.corner_angles[2]);
+                            if first == second {
+                                format!("sides E1 and E2 collapsed to the {first}s")
+                            } else {
+                                format!("sides E1 and E2 collapsed to a {first} and a {second}")
+                            }
                         } else {
-                            "side E1 collapsed to the cusp"
+                            format!("side E1 collapsed to the {first}")
                         };
                         println!("  {sides}: the cells there are triangles");
                     }
