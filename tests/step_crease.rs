@@ -7,7 +7,9 @@
 
 mod common;
 use common::{ellipgrid, root, text};
-use ellipgrid::cad::{creases, grid_creased, grid_face, grid_face_blocks, read_step_faces};
+use ellipgrid::cad::{
+    creased_blocks, creases, grid_creased, grid_face, grid_face_blocks, read_step_faces,
+};
 use ellipgrid::cad::{Route, StepFace};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Edge;
@@ -42,6 +44,8 @@ fn unsplit_folds_split_is_fold_free_and_blocks_meet_node_for_node() {
         assert!(one.quality.is_folded(), "{n}: the one block should fold");
         let (blocks, skipped) = grid_creased(&f, (n, n), &d, &d, &mut lu, "w").unwrap();
         assert_eq!((blocks.len(), skipped), (4, 0));
+        // the memory budget of `step grid` counts the blocks gridded
+        assert_eq!(creased_blocks(&f), blocks.len());
         for (k, b) in blocks.iter().enumerate() {
             assert!(!b.quality.is_folded(), "{n}, block {k}: {}", b.quality);
             assert!(b.quality.min_spacing > 0.0, "{n}, block {k}");

@@ -85,6 +85,24 @@ pub fn creases(face: &StepFace) -> Vec<Crease> {
     }
 }
 
+/// The number of blocks [`grid_creased`] grids `face` into: its sub-patches with area (the
+/// memory budget of `step grid`); 1 for a face without creases.
+pub fn creased_blocks(face: &StepFace) -> usize {
+    let creases = creases(face);
+    let Some(s) = face.surface.as_ref().filter(|_| !creases.is_empty()) else {
+        return 1;
+    };
+    let size = diameter(s);
+    pieces(s, &creases).map_or(1, |rows| {
+        let n = rows
+            .iter()
+            .flatten()
+            .filter(|p| !negligible(*p, size))
+            .count();
+        n.max(1)
+    })
+}
+
 /// The creases of a B-spline surface and, if it has any, the C0 iso-lines along which a
 /// sub-patch between them collapses to a point ([`Crease::pole`]); u lines first, each
 /// direction in parameter order (see the module doc).

@@ -80,7 +80,7 @@ mod units;
 mod unread;
 mod write;
 
-pub use crease::{creases, grid_creased, surface_creases, Crease, CREASE_TURN};
+pub use crease::{creased_blocks, creases, grid_creased, surface_creases, Crease, CREASE_TURN};
 pub use face::{grid_face, grid_face_by, Corners, FaceGrid, BALANCED, COLLAPSED};
 pub use patch::grid_patch;
 pub use reentrant::{grid_face_split, MAX_BLOCKS};

@@ -156,6 +156,7 @@ fn creases(f: &StepFace) -> String {
 }
 
 /// Sub-patches of a patch cut along all its creases (1 without creases).
+/// The sub-patches a creased patch is cut into, with area or not.
 fn crease_pieces(f: &StepFace) -> usize {
     let c = cad::creases(f);
     let n = |d: usize| c.iter().filter(|c| c.dir == d).count() + 1;
@@ -200,7 +201,7 @@ fn grid(a: &GridArgs) -> Result<()> {
         let at = format!("{name}: face {} (--ni, --nj)", f.index);
         let blocks = match f.route() {
             Route::Holes(n) => 4 * n,
-            Route::Patch => crease_pieces(f),
+            Route::Patch => cad::creased_blocks(f),
             _ => 1,
         };
         for _ in 0..blocks {
