@@ -18,7 +18,7 @@
 //!   bilinear patch): a block corner belongs there, and the side turning inside a block's
 //!   side folds the cells next to it where the turn is reentrant.
 
-use super::crease::{Crease, CutKind};
+use super::cut_line::{Crease, CutKind};
 use crate::grid::Edge;
 use crate::surface::pipeline::SurfaceResult;
 use ellipgrid_geometry::{BSplineSurf, Surface, Vec3};

@@ -26,6 +26,7 @@
 //! block's side is then set to the first's bit for bit (they differ by round-off only;
 //! more than [`MATCH`] of the patch's size is an error).
 
+pub use super::cut_line::{Crease, CutKind};
 use super::face::FaceGrid;
 use super::patch::{grid_patch, has_area};
 use super::{Route, StepFace};
@@ -35,7 +36,6 @@ use crate::solve::LinearSolver;
 use crate::{Error, Result};
 use ellipgrid_geometry::{BSplineSurf, Surface, Vec3};
 use std::borrow::Cow;
-use std::fmt;
 
 /// Smallest turn of the normal (degrees) across a C0 iso-line, at every sample, that makes
 /// it a crease.
@@ -48,57 +48,6 @@ pub const SAMPLES: usize = 64;
 /// iso-line, and between two blocks' nodes on a shared crease before they are made equal.
 const MATCH: f64 = 1e-9;
 
-/// One crease of a patch.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Crease {
-    /// The iso-line's direction: 0 for u = `at`, 1 for v = `at`.
-    pub dir: usize,
-    /// Its normalized parameter (the patch's domain is [0, 1]²).
-    pub at: f64,
-    /// Smallest and largest turn of the normal across it over the samples, degrees (NaN
-    /// where no sample has both normals).
-    pub turn: [f64; 2],
-    /// What the line is.
-    pub kind: CutKind,
-}
-
-/// Why a patch is cut along an iso-line.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum CutKind {
-    /// A crease: the normal turns by more than [`CREASE_TURN`] across it.
-    Crease,
-    /// Not a crease but a C0 iso-line along which a sub-patch between creases collapses to
-    /// one point (the leading edge of a wing's cap: the cap, a lens between the airfoil and
-    /// its camber line traversed twice, is cut there into two halves with cusps at both
-    /// ends); the whole patch is cut along it.
-    Pole,
-    /// A C0 iso-line at which a side of a patch without creases turns by more than
-    /// [`super::boundary_cuts::KINK_TURN`] (a cranked wing's leading edge in a flat patch):
-    /// the block's corner goes there ([`super::boundary_cuts`]).
-    Kink,
-    /// The patch folds back over itself beyond this line: the piece between it and the
-    /// patch's side at parameter `end` (0 or 1) covers part of the rest a second time and is
-    /// left out ([`super::boundary_cuts`]).
-    FoldBack { end: u8 },
-}
-
-impl fmt::Display for Crease {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let line = format!("{} = {:.4}", ["u", "v"][self.dir], self.at);
-        let [a, b] = self.turn;
-        match self.kind {
-            CutKind::Pole => write!(f, "{line} (a cap collapses to a point along it)"),
-            CutKind::Crease => write!(f, "{line} (normal turning {a:.0}°–{b:.0}°)"),
-            CutKind::Kink => write!(f, "{line} (a side turns by {b:.0}° there)"),
-            CutKind::FoldBack { end } => write!(
-                f,
-                "{line} (the patch folds back over itself between it and {} = {end}: left out)",
-                ["u", "v"][self.dir]
-            ),
-        }
-    }
-}
-
 /// The creases of an untrimmed patch (a face whose [`Route`] is a patch), u lines first, in
 /// parameter order; none for any other face.
 pub fn creases(face: &StepFace) -> Vec<Crease> {
@@ -110,7 +59,7 @@ pub fn creases(face: &StepFace) -> Vec<Crease> {
 
 /// Every line an untrimmed patch is cut along when its one block folds: its creases (and
 /// poles, [`surface_creases`]), the lines beyond which it folds back over itself and, if it
-/// has no crease, its sides' kinks ([`super::boundary_cuts`]); u lines first, each direction
+/// has no crease, its sides' kinks (`cad::boundary_cuts`); u lines first, each direction
 /// in parameter order.
 pub fn surface_cuts(s: &BSplineSurf) -> Vec<Crease> {
     let mut out = surface_creases(s);

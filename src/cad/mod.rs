@@ -9,6 +9,7 @@
 //! | `patch` | untrimmed four-sided B-spline/NURBS faces: the check, [`grid_patch`] |
 //! | `crease` | an untrimmed patch cut along its creases (C0 iso-lines where the normal turns by more than [`CREASE_TURN`]) into sub-patches, each a block ([`grid_creased`]) |
 //! | `boundary_cuts` | the other cuts of a patch whose block folds: where it folds back over itself (the flap left out) and where a side kinks by more than [`KINK_TURN`] |
+//! | `cut_line` | a line a patch is cut along and why ([`Crease`], [`CutKind`]) |
 //! | `trim` | a face's boundary loop on its surface: (u, v) by projection, corners (by turning angle, `trim/corners`; `trim/balance`: by balanced opposite sides, where those fold; `trim/cusp`: a cusp as a collapsed side, where those fold too, last the tips), four sides |
 //! | `face` | [`grid_face`]: any one-loop face as a block face (Section 2 in (u, v), then Section 4) |
 //! | `holes` | a face with holes split into blocks: one-hole strips, an O-type ring of four around each hole |
@@ -68,6 +69,7 @@ mod blocks;
 mod boundary_cuts;
 mod complex;
 mod crease;
+mod cut_line;
 mod edge;
 mod face;
 mod holes;

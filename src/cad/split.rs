@@ -72,7 +72,7 @@ pub fn grid_face_blocks(
         // ([`super::crease`]), if those fold less; patches that do not fold are never cut,
         // but for one that folds back over itself: its one block would cover part of the
         // face twice, a fold the fold test cannot see where the surface's normal turns over
-        // with the grid ([`super::boundary_cuts`]).
+        // with the grid (`cad::boundary_cuts`).
         let cuts = super::creases(face);
         if (cuts.iter()).any(|c| matches!(c.kind, super::CutKind::FoldBack { .. })) {
             let cut = super::grid_creased(face, (ni, nj), dist_i, dist_j, solver, place);
