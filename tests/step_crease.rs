@@ -7,8 +7,10 @@
 
 mod common;
 use common::{ellipgrid, root, text};
-use ellipgrid::cad::{creases, grid_creased, grid_face, grid_face_blocks, read_step_faces};
-use ellipgrid::cad::{Route, StepFace};
+use ellipgrid::cad::{
+    creased_blocks, creases, grid_creased, grid_face, grid_face_blocks, read_step_faces,
+};
+use ellipgrid::cad::{CutKind, Route, StepFace};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Edge;
 use ellipgrid::solve::direct::DirectLu;
@@ -27,9 +29,12 @@ fn the_crease_and_the_caps_leading_edge_are_found() {
     // the skin meets the cap at 82°–90° (the skin's normal is within the airfoil's slopes of
     // the cap plane's normal's perpendicular); the spanwise kink at u = 1/3 is no crease; on
     // the skin the leading-edge line v = 1/2 is smooth (no turn), on the cap one point
-    assert!(c[0].dir == 0 && (c[0].at - 2.0 / 3.0).abs() < 1e-15 && !c[0].pole);
+    assert!(c[0].dir == 0 && (c[0].at - 2.0 / 3.0).abs() < 1e-15 && c[0].kind == CutKind::Crease);
     assert!(c[0].turn[0] > 75.0 && c[0].turn[1] < 95.0, "{c:?}");
-    assert!(c[1].dir == 1 && c[1].at == 0.5 && c[1].pole, "{c:?}");
+    assert!(
+        c[1].dir == 1 && c[1].at == 0.5 && c[1].kind == CutKind::Pole,
+        "{c:?}"
+    );
 }
 
 #[test]
@@ -42,6 +47,8 @@ fn unsplit_folds_split_is_fold_free_and_blocks_meet_node_for_node() {
         assert!(one.quality.is_folded(), "{n}: the one block should fold");
         let (blocks, skipped) = grid_creased(&f, (n, n), &d, &d, &mut lu, "w").unwrap();
         assert_eq!((blocks.len(), skipped), (4, 0));
+        // the memory budget of `step grid` counts the blocks gridded
+        assert_eq!(creased_blocks(&f), blocks.len());
         for (k, b) in blocks.iter().enumerate() {
             assert!(!b.quality.is_folded(), "{n}, block {k}: {}", b.quality);
             assert!(b.quality.min_spacing > 0.0, "{n}, block {k}");
@@ -93,7 +100,7 @@ fn step_grid_cuts_the_patch_and_writes_four_blocks() {
     let o = ellipgrid(dir.path(), &[&args[..], &["-o", "w.x"]].concat());
     let t = text(&o);
     assert_eq!(o.status.code(), Some(0), "{t}");
-    assert!(t.contains("face1: cut creases at u = 0.6667"), "{t}");
+    assert!(t.contains("face1: cut along u = 0.6667"), "{t}");
     assert!(t.contains("into 4 blocks"), "{t}");
     for b in 0..4 {
         assert!(

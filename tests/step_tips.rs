@@ -188,7 +188,7 @@ fn step_grid_writes_the_band_with_both_tips_collapsed() {
     let t = text(&o);
     assert_eq!(o.status.code(), Some(0), "{t}");
     assert!(t.contains("corners turning 144°, 144°, 144°, 144°"), "{t}");
-    assert!(t.contains("sides E1 and E2 collapsed"), "{t}");
+    assert!(t.contains("sides E1 and E2 collapsed to the tips"), "{t}");
     assert!(t.contains("folded cells                       0"), "{t}");
     // the 2 × 8 triangles along the tips, apart
     assert!(t.contains("collapsed-side cells              16"), "{t}");

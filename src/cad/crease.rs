@@ -11,7 +11,7 @@
 //! creases.
 //!
 //! Where the patch has creases, C0 iso-lines along which a sub-patch between them collapses
-//! to one point are cut too ([`Crease::pole`]): OpenVSP's caps are lenses between the
+//! to one point are cut too ([`CutKind::Pole`]): OpenVSP's caps are lenses between the
 //! airfoil and its camber line traversed twice, whose leading-edge iso-line is one point; a
 //! grid line must run along it, or the cells beside it fold. (Such a line must be a C0 knot,
 //! as in OpenVSP's piecewise Bézier sections: no knots are inserted.)
@@ -34,6 +34,7 @@ use crate::grid::Edge;
 use crate::solve::LinearSolver;
 use crate::{Error, Result};
 use ellipgrid_geometry::{BSplineSurf, Surface, Vec3};
+use std::borrow::Cow;
 use std::fmt;
 
 /// Smallest turn of the normal (degrees) across a C0 iso-line, at every sample, that makes
@@ -57,21 +58,43 @@ pub struct Crease {
     /// Smallest and largest turn of the normal across it over the samples, degrees (NaN
     /// where no sample has both normals).
     pub turn: [f64; 2],
+    /// What the line is.
+    pub kind: CutKind,
+}
+
+/// Why a patch is cut along an iso-line.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CutKind {
+    /// A crease: the normal turns by more than [`CREASE_TURN`] across it.
+    Crease,
     /// Not a crease but a C0 iso-line along which a sub-patch between creases collapses to
     /// one point (the leading edge of a wing's cap: the cap, a lens between the airfoil and
     /// its camber line traversed twice, is cut there into two halves with cusps at both
     /// ends); the whole patch is cut along it.
-    pub pole: bool,
+    Pole,
+    /// A C0 iso-line at which a side of a patch without creases turns by more than
+    /// [`super::boundary_cuts::KINK_TURN`] (a cranked wing's leading edge in a flat patch):
+    /// the block's corner goes there ([`super::boundary_cuts`]).
+    Kink,
+    /// The patch folds back over itself beyond this line: the piece between it and the
+    /// patch's side at parameter `end` (0 or 1) covers part of the rest a second time and is
+    /// left out ([`super::boundary_cuts`]).
+    FoldBack { end: u8 },
 }
 
 impl fmt::Display for Crease {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let line = format!("{} = {:.4}", ["u", "v"][self.dir], self.at);
-        if self.pole {
-            write!(f, "{line} (a cap collapses to a point along it)")
-        } else {
-            let [a, b] = self.turn;
-            write!(f, "{line} (normal turning {a:.0}°–{b:.0}°)")
+        let [a, b] = self.turn;
+        match self.kind {
+            CutKind::Pole => write!(f, "{line} (a cap collapses to a point along it)"),
+            CutKind::Crease => write!(f, "{line} (normal turning {a:.0}°–{b:.0}°)"),
+            CutKind::Kink => write!(f, "{line} (a side turns by {b:.0}° there)"),
+            CutKind::FoldBack { end } => write!(
+                f,
+                "{line} (the patch folds back over itself between it and {} = {end}: left out)",
+                ["u", "v"][self.dir]
+            ),
         }
     }
 }
@@ -80,13 +103,75 @@ impl fmt::Display for Crease {
 /// parameter order; none for any other face.
 pub fn creases(face: &StepFace) -> Vec<Crease> {
     match (&face.surface, face.route()) {
-        (Some(s), Route::Patch) => surface_creases(s),
+        (Some(s), Route::Patch) => surface_cuts(s),
         _ => Vec::new(),
     }
 }
 
+/// Every line an untrimmed patch is cut along when its one block folds: its creases (and
+/// poles, [`surface_creases`]), the lines beyond which it folds back over itself and, if it
+/// has no crease, its sides' kinks ([`super::boundary_cuts`]); u lines first, each direction
+/// in parameter order.
+pub fn surface_cuts(s: &BSplineSurf) -> Vec<Crease> {
+    let mut out = surface_creases(s);
+    let size = diameter(s);
+    let folds = super::boundary_cuts::fold_backs(s, size);
+    if out.is_empty() {
+        out.extend(super::boundary_cuts::kinks(s, size));
+    }
+    // a kink or crease inside a left-out piece is not cut
+    out.retain(|c| {
+        !folds.iter().any(|f| match f.kind {
+            CutKind::FoldBack { end } if f.dir == c.dir => (c.at > f.at) == (end == 1),
+            _ => false,
+        })
+    });
+    out.extend(folds);
+    out.sort_by(|a, b| a.dir.cmp(&b.dir).then(a.at.total_cmp(&b.at)));
+    out.dedup_by(|a, b| a.dir == b.dir && a.at == b.at);
+    out
+}
+
+/// The number of blocks [`grid_creased`] grids `face` into: its sub-patches with area (the
+/// memory budget of `step grid`); 1 for a face without creases.
+pub fn creased_blocks(face: &StepFace) -> usize {
+    let creases = creases(face);
+    let Some(s) = face.surface.as_ref().filter(|_| !creases.is_empty()) else {
+        return 1;
+    };
+    let size = diameter(s);
+    pieces(s, &creases).map_or(1, |rows| {
+        let flaps = flaps(&creases);
+        let n = (rows.iter().enumerate())
+            .flat_map(|(a, row)| row.iter().enumerate().map(move |(b, p)| (a, b, p)))
+            .filter(|&(a, b, p)| !left_out(&flaps, (a, b), p, size))
+            .count();
+        n.max(1)
+    })
+}
+
+/// The pieces left out beyond fold-back lines: (direction, piece index in it).
+fn flaps(creases: &[Crease]) -> Vec<(usize, usize)> {
+    creases
+        .iter()
+        .filter_map(|c| match c.kind {
+            CutKind::FoldBack { end } => {
+                let n = creases.iter().filter(|d| d.dir == c.dir).count();
+                Some((c.dir, if end == 1 { n } else { 0 }))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// Whether the sub-patch (a, b) (`a`-th in u, `b`-th in v) is not gridded: a flap beyond a
+/// fold-back line, or no surface ([`negligible`]).
+fn left_out(flaps: &[(usize, usize)], (a, b): (usize, usize), p: &BSplineSurf, size: f64) -> bool {
+    flaps.contains(&(0, a)) || flaps.contains(&(1, b)) || negligible(p, size)
+}
+
 /// The creases of a B-spline surface and, if it has any, the C0 iso-lines along which a
-/// sub-patch between them collapses to a point ([`Crease::pole`]); u lines first, each
+/// sub-patch between them collapses to a point ([`CutKind::Pole`]); u lines first, each
 /// direction in parameter order (see the module doc).
 pub fn surface_creases(s: &BSplineSurf) -> Vec<Crease> {
     let size = diameter(s);
@@ -104,7 +189,7 @@ pub fn surface_creases(s: &BSplineSurf) -> Vec<Crease> {
                     dir,
                     at,
                     turn,
-                    pole: false,
+                    kind: CutKind::Crease,
                 }),
                 // a C0 line (no gap), not a crease
                 Some(turn) => cand.push((at, turn)),
@@ -144,7 +229,7 @@ pub fn surface_creases(s: &BSplineSurf) -> Vec<Crease> {
                     dir,
                     at,
                     turn,
-                    pole: true,
+                    kind: CutKind::Pole,
                 });
             }
         }
@@ -171,7 +256,7 @@ fn meets(s: &BSplineSurf, dir: usize, at: f64, size: f64) -> bool {
 }
 
 /// Diameter of a 17 × 17 sample of the surface.
-fn diameter(s: &dyn Surface) -> f64 {
+pub(super) fn diameter(s: &dyn Surface) -> f64 {
     let (lo, hi) = (0..=16 * 16 + 16).fold(
         (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)),
         |(lo, hi), k| {
@@ -227,6 +312,13 @@ fn pieces(s: &BSplineSurf, creases: &[Crease]) -> Result<Vec<Vec<BSplineSurf>>> 
         source: e,
     };
     let (cu, cv) = (cuts(0), cuts(1));
+    // a fold-back line need not be a knot: make it a C0 one first
+    let mut s = Cow::Borrowed(s);
+    for (d, c) in creases.iter().map(|c| (c.dir, c.at)) {
+        if !s.c0_knots(d).contains(&c) {
+            s = Cow::Owned(s.with_c0_knot(d, c).map_err(geo)?);
+        }
+    }
     s.split_at(0, &cu)
         .map_err(geo)?
         .iter()
@@ -272,10 +364,11 @@ pub fn grid_creased(
     // the block index of each sub-patch, if gridded
     let mut block: Vec<Vec<Option<usize>>> = Vec::with_capacity(rows.len());
     let mut skipped = 0;
-    for row in &rows {
+    let flaps = flaps(&creases);
+    for (a, row) in rows.iter().enumerate() {
         let mut ids = Vec::with_capacity(row.len());
-        for piece in row {
-            if negligible(piece, size) {
+        for (b, piece) in row.iter().enumerate() {
+            if left_out(&flaps, (a, b), piece, size) {
                 skipped += 1;
                 ids.push(None);
                 continue;
@@ -292,6 +385,7 @@ pub fn grid_creased(
             "no sub-patch between its creases has area",
         ));
     }
+    super::boundary_cuts::snap_fold_backs(s, &creases, &block, &mut results);
     // Shared crease sides: the lower block's E2 (E4) onto the upper block's E1 (E3).
     for (a, ids) in block.iter().enumerate() {
         for (b, id) in ids.iter().enumerate() {
@@ -334,7 +428,11 @@ pub fn grid_creased(
     }
     let grids = results
         .into_iter()
-        .map(|r| FaceGrid::new(r, Vec::new(), 0.0, None))
+        .map(|r| {
+            let mut g = FaceGrid::new(r, Vec::new(), 0.0, None);
+            g.patch_cuts.clone_from(&creases);
+            g
+        })
         .collect();
     Ok((grids, skipped))
 }
@@ -365,10 +463,8 @@ mod tests {
             [c[0] - 0.7 * e, c[1], c[2] - e],
             [c[0] + 0.2 * e, c[1], c[2] + e],
         ]);
-        assert!(
-            has_area(&dot).is_ok(),
-            "has_area alone takes it for a surface"
-        );
+        // one point to round-off at its coordinates' magnitude: no area either
+        assert!(has_area(&dot).is_err());
         assert!(negligible(&dot, 200.0));
         let square = bilinear([
             [0.0, 0.0, 0.0],

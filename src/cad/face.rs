@@ -59,6 +59,9 @@ pub struct FaceGrid {
     /// The quality report of `result.grid` ([`quality::quality_surface`]), computed once
     /// here: the retry test of [`grid_face`] and the callers' reports share it.
     pub quality: QualityReport,
+    /// The lines an untrimmed patch was cut along ([`super::grid_creased`]; every block of
+    /// the face has them); empty for a face gridded whole.
+    pub patch_cuts: Vec<super::Crease>,
 }
 
 impl FaceGrid {
@@ -76,6 +79,7 @@ impl FaceGrid {
             gap,
             uv_picard,
             quality,
+            patch_cuts: Vec::new(),
         }
     }
 }

@@ -8,6 +8,7 @@
 //! | `mod` | [`read_step_faces`]: every face of every shell, numbered from 1 (or every bare B-spline surface of a file without faces); [`step_surface`] |
 //! | `patch` | untrimmed four-sided B-spline/NURBS faces: the check, [`grid_patch`] |
 //! | `crease` | an untrimmed patch cut along its creases (C0 iso-lines where the normal turns by more than [`CREASE_TURN`]) into sub-patches, each a block ([`grid_creased`]) |
+//! | `boundary_cuts` | the other cuts of a patch whose block folds: where it folds back over itself (the flap left out) and where a side kinks by more than [`KINK_TURN`] |
 //! | `trim` | a face's boundary loop on its surface: (u, v) by projection, corners (by turning angle, `trim/corners`; `trim/balance`: by balanced opposite sides, where those fold; `trim/cusp`: a cusp as a collapsed side, where those fold too, last the tips), four sides |
 //! | `face` | [`grid_face`]: any one-loop face as a block face (Section 2 in (u, v), then Section 4) |
 //! | `holes` | a face with holes split into blocks: one-hole strips, an O-type ring of four around each hole |
@@ -65,6 +66,7 @@
 
 mod band;
 mod blocks;
+mod boundary_cuts;
 mod chords;
 mod complex;
 mod crease;
@@ -82,8 +84,12 @@ mod units;
 mod unread;
 mod write;
 
+pub use boundary_cuts::KINK_TURN;
 pub use chords::grid_face_chords;
-pub use crease::{creases, grid_creased, surface_creases, Crease, CREASE_TURN};
+pub use crease::{
+    creased_blocks, creases, grid_creased, surface_creases, surface_cuts, Crease, CutKind,
+    CREASE_TURN,
+};
 pub use face::{grid_face, grid_face_by, Corners, FaceGrid, BALANCED, COLLAPSED};
 pub use patch::grid_patch;
 pub use reentrant::{grid_face_split, MAX_BLOCKS};

@@ -117,9 +117,10 @@ pub(super) fn four_sided(
     Ok(())
 }
 
-/// Refuses a surface without area: all of it one point, or a curve (OpenVSP writes such
-/// degenerate bilinear patches at wing tips and roots, next to the real ones). Measured on a
-/// 17 × 17 sample: Σ |diagonal × diagonal| / 2 against the square of the sample's diameter.
+/// Refuses a surface without area: all of it one point (to round-off: 1e-12 of its
+/// coordinates' magnitude), or a curve (OpenVSP writes such degenerate bilinear patches at
+/// wing tips and roots, next to the real ones). Measured on a 17 × 17 sample:
+/// Σ |diagonal × diagonal| / 2 against the square of the sample's diameter.
 pub(super) fn has_area(s: &dyn Surface) -> std::result::Result<(), String> {
     const N: usize = 16;
     let p: Vec<Vec3> = (0..=N)
@@ -131,6 +132,9 @@ pub(super) fn has_area(s: &dyn Surface) -> std::result::Result<(), String> {
         |(lo, hi), q| (lo.inf(q), hi.sup(q)),
     );
     let diam = (hi - lo).norm();
+    // round-off of the evaluation at the coordinates' magnitude: OpenVSP writes patches whose
+    // four control points are one point, evaluated 1e-14 apart
+    let noise = 1e-12 * lo.abs().sup(&hi.abs()).norm();
     let at = |i: usize, j: usize| p[i + (N + 1) * j];
     let area: f64 = (0..N)
         .flat_map(|j| (0..N).map(move |i| (i, j)))
@@ -141,7 +145,7 @@ pub(super) fn has_area(s: &dyn Surface) -> std::result::Result<(), String> {
         })
         .sum();
     // Written so that NaN refuses too.
-    if diam.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+    if diam.partial_cmp(&noise) != Some(std::cmp::Ordering::Greater) {
         Err("the surface is a single point (a degenerate patch, not a face)".into())
     } else if area.partial_cmp(&(1e-10 * diam * diam)) != Some(std::cmp::Ordering::Greater) {
         Err(format!(

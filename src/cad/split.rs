@@ -26,9 +26,10 @@ use ellipgrid_geometry::TruckSurface;
 /// face cut by chords between its reentrant vertices ([`super::grid_face_chords`]),
 /// four around each hole for a face with holes, in the order of the holes, each ring's blocks
 /// one after the other around the hole; four across a closed band without a seam edge.
-/// An untrimmed patch whose one block folds and that has creases is cut along them into
-/// blocks ([`super::grid_creased`]) if those have fewer folded cells in all (sub-patches
-/// without area left out).
+/// An untrimmed patch whose one block folds and that has creases (or kinks) is cut along them
+/// into blocks ([`super::grid_creased`]) if those have fewer folded cells in all (sub-patches
+/// without area left out); one that folds back over itself is cut there whether its one
+/// block's fold test fails or not (the flap left out), if the blocks do not fold.
 /// Blocks run counterclockwise in (u, v) when the face's normal is the surface's, so that
 /// every block's normal is the face's.
 ///
@@ -77,9 +78,21 @@ pub fn grid_face_blocks(
     }
     if let Route::Patch = face.route() {
         // An untrimmed patch whose one block folds is cut along its creases into blocks
-        // ([`super::crease`]), if those fold less; patches that do not fold are never cut.
+        // ([`super::crease`]), if those fold less; patches that do not fold are never cut,
+        // but for one that folds back over itself: its one block would cover part of the
+        // face twice, a fold the fold test cannot see where the surface's normal turns over
+        // with the grid ([`super::boundary_cuts`]).
+        let cuts = super::creases(face);
+        if (cuts.iter()).any(|c| matches!(c.kind, super::CutKind::FoldBack { .. })) {
+            let cut = super::grid_creased(face, (ni, nj), dist_i, dist_j, solver, place);
+            if let Ok((gs, _)) = cut {
+                if gs.iter().all(|g| !g.quality.is_folded()) {
+                    return Ok(gs);
+                }
+            }
+        }
         let one = super::grid_face(face, (ni, nj), dist_i, dist_j, solver, place);
-        if folds(&one) && !super::creases(face).is_empty() {
+        if folds(&one) && !cuts.is_empty() {
             let cut = super::grid_creased(face, (ni, nj), dist_i, dist_j, solver, place);
             if let Ok((gs, _)) = cut {
                 let cells =

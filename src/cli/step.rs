@@ -145,19 +145,24 @@ fn list(file: &Path) -> Result<()> {
     Ok(())
 }
 
-/// The creases of a patch for `step list`: "; creases u = … (normal turning …)" or nothing.
+/// The cut lines of a patch for `step list`: "; creases at u = … (normal turning …)",
+/// "; a cut at v = … (a side turns …)" or nothing.
 fn creases(f: &StepFace) -> String {
-    let c: Vec<String> = cad::creases(f).iter().map(|c| c.to_string()).collect();
-    match c.len() {
-        0 => String::new(),
-        1 => format!("; a crease at {}", c[0]),
-        _ => format!("; creases at {}", c.join(", ")),
+    let cuts = cad::creases(f);
+    let c: Vec<String> = cuts.iter().map(|c| c.to_string()).collect();
+    let creased =
+        (cuts.iter()).all(|c| matches!(c.kind, cad::CutKind::Crease | cad::CutKind::Pole));
+    match (c.len(), creased) {
+        (0, _) => String::new(),
+        (1, true) => format!("; a crease at {}", c[0]),
+        (1, false) => format!("; a cut at {}", c[0]),
+        (_, true) => format!("; creases at {}", c.join(", ")),
+        (_, false) => format!("; cuts at {}", c.join(", ")),
     }
 }
 
-/// Sub-patches of a patch cut along all its creases (1 without creases).
-fn crease_pieces(f: &StepFace) -> usize {
-    let c = cad::creases(f);
+/// The sub-patches a patch is cut into, gridded or left out (1 without cuts).
+fn crease_pieces(c: &[cad::Crease]) -> usize {
     let n = |d: usize| c.iter().filter(|c| c.dir == d).count() + 1;
     n(0) * n(1)
 }
@@ -200,7 +205,7 @@ fn grid(a: &GridArgs) -> Result<()> {
         let at = format!("{name}: face {} (--ni, --nj)", f.index);
         let blocks = match f.route() {
             Route::Holes(n) => 4 * n,
-            Route::Patch => crease_pieces(f),
+            Route::Patch => cad::creased_blocks(f),
             _ => 1,
         };
         for _ in 0..blocks {
@@ -257,16 +262,20 @@ fn grid(a: &GridArgs) -> Result<()> {
         };
         // A face of several blocks (holes) is written, or left out, as a whole.
         let several = grids.len() > 1;
-        if several && !a.quiet && f.route() == Route::Patch {
-            // a patch cut along its creases (its one block folds)
-            let left_out = crease_pieces(f) - grids.len();
+        let cut = grids.first().filter(|g| !g.patch_cuts.is_empty());
+        if let (false, Some(g0)) = (a.quiet, cut) {
+            // a patch cut along its creases, kinks or fold-backs (its one block folds)
+            let left_out = crease_pieces(&g0.patch_cuts) - grids.len();
             println!(
-                "face{}: cut{} into {} blocks{}",
+                "face{}: cut along {} into {} block{}{}",
                 f.index,
-                creases(f).replacen(";", "", 1),
+                (g0.patch_cuts.iter().map(|c| c.to_string()))
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 grids.len(),
+                if several { "s" } else { "" },
                 if left_out > 0 {
-                    format!(" ({left_out} sub-patch(es) without area left out)")
+                    format!(" ({left_out} sub-patch(es) left out)")
                 } else {
                     String::new()
                 }
@@ -309,10 +318,19 @@ fn grid(a: &GridArgs) -> Result<()> {
                         s.iter().all(|p| *p == s[0])
                     };
                     if !g.corner_angles[0].is_nan() && point(Edge::E1) {
+                        // a cusp turns by more than 150° (an interior angle below 30°); a
+                        // sharp vertex collapsed by the last try (`Corners::Tips`) is a tip
+                        let name = |turn: f64| if turn > 150.0 { "cusp" } else { "tip" };
+                        let first = name(g.corner_angles[0]);
                         let sides = if point(Edge::E2) {
-                            "sides E1 and E2 collapsed to the cusps"
+                            let second = name(g.corner_angles[2]);
+                            if first == second {
+                                format!("sides E1 and E2 collapsed to the {first}s")
+                            } else {
+                                format!("sides E1 and E2 collapsed to a {first} and a {second}")
+                            }
                         } else {
-                            "side E1 collapsed to the cusp"
+                            format!("side E1 collapsed to the {first}")
                         };
                         println!("  {sides}: the cells there are triangles");
                     }

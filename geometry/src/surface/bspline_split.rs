@@ -1,6 +1,7 @@
-//! A B-spline surface cut along its C0 iso-lines into pieces (no knot insertion: a knot of
+//! A B-spline surface cut along its C0 iso-lines into pieces (no knot insertion in the cut: a knot of
 //! multiplicity ≥ the degree already makes the surface interpolate a row of control points
-//! there, so each piece is a subset of the control net with its knots clamped at the cut).
+//! there, so each piece is a subset of the control net with its knots clamped at the cut);
+//! a cut elsewhere first raises its knot to that multiplicity (Boehm's insertion).
 
 use super::BSplineSurf;
 use crate::GeometryError;
@@ -95,6 +96,68 @@ impl BSplineSurf {
         }
         Ok(pieces)
     }
+
+    /// The same surface with the knot `c` (normalized, interior) of direction `d` raised to
+    /// multiplicity at least the degree by Boehm's knot insertion on the homogeneous control
+    /// points, so that [`BSplineSurf::split_at`] can cut at `c` (a C0 iso-line of the new
+    /// representation; the surface is unchanged up to round-off).
+    ///
+    /// # Errors
+    /// `c` outside (0, 1).
+    pub fn with_c0_knot(&self, d: usize, c: f64) -> Result<BSplineSurf, GeometryError> {
+        if !(c > 0.0 && c < 1.0) {
+            return Err(GeometryError::Invalid(format!(
+                "B-spline knot insertion: {c} is not inside (0, 1)"
+            )));
+        }
+        let p = self.deg[d];
+        let mut s = self.clone();
+        loop {
+            let t = &s.knots[d];
+            let have = t.iter().filter(|x| **x == c).count();
+            if have >= p {
+                return Ok(s);
+            }
+            // the knot span t[k] ≤ c < t[k + 1]
+            let k = t.partition_point(|x| *x <= c) - 1;
+            let alpha: Vec<f64> = (k + 1 - p..=k)
+                .map(|i| (c - t[i]) / (t[i + p] - t[i]))
+                .collect();
+            let (n, other) = (s.count[d], s.count[1 - d]);
+            let at = |cw: &[[f64; 4]], i: usize, j: usize, nv: usize| {
+                if d == 0 {
+                    cw[i * nv + j]
+                } else {
+                    cw[j * nv + i]
+                }
+            };
+            let mut count = s.count;
+            count[d] = n + 1;
+            let (nv_old, nv_new) = (s.count[1], count[1]);
+            let mut cw = vec![[0.0; 4]; count[0] * count[1]];
+            for j in 0..other {
+                for i in 0..=n {
+                    let q = if i + p <= k {
+                        at(&s.cw, i, j, nv_old)
+                    } else if i > k {
+                        at(&s.cw, i - 1, j, nv_old)
+                    } else {
+                        let a = alpha[i + p - k - 1];
+                        let (lo, hi) = (at(&s.cw, i - 1, j, nv_old), at(&s.cw, i, j, nv_old));
+                        std::array::from_fn(|m| (1.0 - a) * lo[m] + a * hi[m])
+                    };
+                    if d == 0 {
+                        cw[i * nv_new + j] = q;
+                    } else {
+                        cw[j * nv_new + i] = q;
+                    }
+                }
+            }
+            s.knots[d].insert(k + 1, c);
+            s.count = count;
+            s.cw = cw;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -175,6 +238,33 @@ mod tests {
             assert!(close(rows[0].point(1.0, y), rows[1].point(0.0, y)));
         }
         assert!(!close(rows[1].point(1.0, 0.3), rows[2].point(0.0, 0.3)));
+    }
+
+    #[test]
+    fn an_inserted_c0_knot_leaves_the_surface_and_splits_it() {
+        let s = surface();
+        let mut rng = Rng::new(11);
+        let close = |a: Vec3, b: Vec3| (a - b).norm() <= 1e-13 * (1.0 + b.norm());
+        // inside a span, at a simple knot (u = 2.6 of degree 2), in v (degree 3)
+        for (d, c) in [(0, 0.37), (0, 0.8), (1, 0.61), (1, 0.1)] {
+            let t = s.with_c0_knot(d, c).unwrap();
+            assert!(t.c0_knots(d).contains(&c), "{d} {c}");
+            for _ in 0..200 {
+                let (u, v) = (rng.range(0.0, 1.0), rng.range(0.0, 1.0));
+                let (e, f) = (t.eval(u, v), s.eval(u, v));
+                assert!(close(e.x, f.x) && close(e.xu, f.xu) && close(e.xv, f.xv));
+            }
+            let pieces = t.split_at(d, &[c]).unwrap();
+            for y in [0.0, 0.4, 1.0] {
+                let (a, b) = if d == 0 {
+                    (pieces[0].point(1.0, y), s.point(c, y))
+                } else {
+                    (pieces[0].point(y, 1.0), s.point(y, c))
+                };
+                assert!(close(a, b), "{d} {c} {y}");
+            }
+        }
+        assert!(s.with_c0_knot(0, 1.0).is_err() && s.with_c0_knot(1, 0.0).is_err());
     }
 
     #[test]
