@@ -14,6 +14,7 @@
 //! | `face` | [`grid_face`]: any one-loop face as a block face (Section 2 in (u, v), then Section 4) |
 //! | `holes` | a face with holes split into blocks: one-hole strips, an O-type ring of four around each hole |
 //! | `reentrant` | [`grid_face_split`]: a one-loop face whose one block folds, cut at its reentrant vertices into blocks |
+//! | `chords` | [`grid_face_chords`]: a one-loop face whose every other try folds, cut by chords along its edges' continuations from its reentrant vertices (combs, frames) |
 //! | `band` | a closed band without a seam edge (two winding loops) split into four blocks |
 //! | `blocks` | a split face's blocks gridded as block faces (cuts sampled once, shared bit for bit) |
 //! | `split` | [`grid_face_blocks`]: any face as one block or several (cuts shared bit for bit) |
@@ -67,6 +68,7 @@
 mod band;
 mod blocks;
 mod boundary_cuts;
+mod chords;
 mod complex;
 mod crease;
 mod cut_line;
@@ -85,6 +87,7 @@ mod unread;
 mod write;
 
 pub use boundary_cuts::KINK_TURN;
+pub use chords::grid_face_chords;
 pub use crease::{
     creased_blocks, creases, grid_creased, surface_creases, surface_cuts, Crease, CutKind,
     CREASE_TURN,

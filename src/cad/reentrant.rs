@@ -41,7 +41,7 @@ const SNAP: f64 = 0.15;
 
 /// A piece of a part's boundary.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Piece {
+pub(super) enum Piece {
     /// The loop forwards from the first point to the second (the whole loop if they are equal).
     Loop(LoopPoint, LoopPoint),
     /// Cut `c`, from its end to its start if `rev`.
@@ -64,6 +64,18 @@ pub fn grid_face_split(
     dist_j: &DistributionSpec,
     solver: &mut dyn LinearSolver,
     place: &str,
+) -> Result<Vec<FaceGrid>> {
+    grid_cut(face, (ni, nj), [dist_i, dist_j], solver, place, layout)
+}
+
+/// The grids of a one-loop face cut into the blocks of `layout` (made in its scaled (u, v)).
+pub(super) fn grid_cut(
+    face: &StepFace,
+    (ni, nj): (usize, usize),
+    [dist_i, dist_j]: [&DistributionSpec; 2],
+    solver: &mut dyn LinearSolver,
+    place: &str,
+    layout: fn(&mut FaceLoop) -> std::result::Result<Layout, String>,
 ) -> Result<Vec<FaceGrid>> {
     let err = |m: String| Error::input(place, m);
     if !matches!(face.route(), Route::Trimmed(_)) {
@@ -112,7 +124,7 @@ pub fn grid_face_split(
 }
 
 /// Arclength of a loop point from the loop's start.
-fn position(lp: &FaceLoop, p: LoopPoint) -> f64 {
+pub(super) fn position(lp: &FaceLoop, p: LoopPoint) -> f64 {
     (0..p.edge).map(|k| lp.length(k)).sum::<f64>() + p.sigma * lp.length(p.edge)
 }
 
@@ -127,7 +139,7 @@ fn ahead(lp: &FaceLoop, a: LoopPoint, p: LoopPoint) -> f64 {
 }
 
 /// Whether `p` lies strictly inside the loop stretch from `a` forwards to `b`.
-fn within(lp: &FaceLoop, (a, b): (LoopPoint, LoopPoint), p: LoopPoint) -> bool {
+pub(super) fn within(lp: &FaceLoop, (a, b): (LoopPoint, LoopPoint), p: LoopPoint) -> bool {
     let t = total(lp);
     let span = if a == b { t } else { ahead(lp, a, b) };
     let d = ahead(lp, a, p);
@@ -135,17 +147,17 @@ fn within(lp: &FaceLoop, (a, b): (LoopPoint, LoopPoint), p: LoopPoint) -> bool {
 }
 
 /// (u, v) of a loop point, scaled.
-fn at(lp: &mut FaceLoop, p: LoopPoint) -> std::result::Result<[f64; 2], String> {
+pub(super) fn at(lp: &mut FaceLoop, p: LoopPoint) -> std::result::Result<[f64; 2], String> {
     let s = lp.metric_scale();
     let (_, w) = lp.sample(p, p, &[0.0])?;
     Ok([w[0][0] * s[0], w[0][1] * s[1]])
 }
 
-fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+pub(super) fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
-fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+pub(super) fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
@@ -325,7 +337,7 @@ fn cut_from(
 }
 
 /// `pieces` with Loop pieces that meet merged.
-fn merged(pieces: Vec<Piece>) -> Vec<Piece> {
+pub(super) fn merged(pieces: Vec<Piece>) -> Vec<Piece> {
     let mut out: Vec<Piece> = Vec::with_capacity(pieces.len());
     for p in pieces {
         match (out.last_mut(), p) {
@@ -469,7 +481,7 @@ fn layout(lp: &mut FaceLoop) -> std::result::Result<Layout, String> {
 }
 
 /// A part's four sides in loop order: its pieces, loop pieces split at added corners.
-fn four(
+pub(super) fn four(
     lp: &FaceLoop,
     mut pieces: Vec<Piece>,
     ccw: bool,
@@ -522,7 +534,7 @@ fn four(
 
 /// The layout: each block's sides rotated so that every cut runs along the same grid
 /// direction in both its blocks (a walk over the tree of blocks joined by cuts).
-fn assign(cuts: Vec<(LoopPoint, LoopPoint)>, parts: Vec<[Piece; 4]>) -> Layout {
+pub(super) fn assign(cuts: Vec<(LoopPoint, LoopPoint)>, parts: Vec<[Piece; 4]>) -> Layout {
     let (nc, nb) = (cuts.len(), parts.len());
     // (block, side) of each cut's two occurrences.
     let mut at: Vec<Vec<(usize, usize)>> = vec![Vec::new(); nc];

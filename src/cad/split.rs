@@ -8,6 +8,7 @@
 
 use super::band::band;
 use super::blocks::grid_layout;
+use super::chords::grid_face_chords;
 use super::face::{bounds, folds, gap_tolerance, grid_face_by, Corners, FaceGrid};
 use super::holes::layout;
 use super::reentrant::grid_face_split;
@@ -21,7 +22,8 @@ use ellipgrid_geometry::TruckSurface;
 /// The grids of a face, one per block: one block for a face of one loop ([`super::grid_face`])
 /// or, where that block folds, the face cut at its reentrant vertices into blocks
 /// ([`super::grid_face_split`], if those do not fold), else one block with other corners
-/// ([`Corners::Balanced`], then [`Corners::Collapsed`], then [`Corners::Tips`]),
+/// ([`Corners::Balanced`], then [`Corners::Collapsed`], then [`Corners::Tips`]), else the
+/// face cut by chords between its reentrant vertices ([`super::grid_face_chords`]),
 /// four around each hole for a face with holes, in the order of the holes, each ring's blocks
 /// one after the other around the hole; four across a closed band without a seam edge.
 /// An untrimmed patch whose one block folds and that has creases (or kinks) is cut along them
@@ -62,6 +64,13 @@ pub fn grid_face_blocks(
                 let other = grid_face_by(face, (ni, nj), d.0, d.1, solver, place, sets);
                 if !folds(&other) && other.is_ok() {
                     return other.map(|g| vec![g]);
+                }
+            }
+            // Last, the face cut by chords between its reentrant vertices.
+            let chords = grid_face_chords(face, (ni, nj), dist_i, dist_j, solver, place);
+            if let Ok(gs) = chords {
+                if gs.iter().all(|g| !g.quality.is_folded()) {
+                    return Ok(gs);
                 }
             }
         }
