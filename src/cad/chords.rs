@@ -23,7 +23,8 @@
 
 use super::face::FaceGrid;
 use super::holes::{locate, polygon, Layout};
-use super::reentrant::{assign, at, cross, four, grid_cut, merged, position, sub, within, Piece};
+use super::pieces::{assign, at, cross, four, merged, position, sub, within, Piece};
+use super::reentrant::grid_cut;
 use super::trim::{FaceLoop, LoopPoint, NS};
 use super::StepFace;
 use crate::case::DistributionSpec;

@@ -76,6 +76,7 @@ mod edge;
 mod face;
 mod holes;
 mod patch;
+mod pieces;
 mod placement;
 mod prescan;
 mod reentrant;
