@@ -99,3 +99,70 @@ fn a_part_used_twice_in_a_sub_assembly_is_gridded_at_both_places() {
     let p = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("a.x")).unwrap();
     assert_eq!(p.blocks.len(), 2);
 }
+
+#[test]
+fn mapped_items_place_a_part_like_the_assembly_relationships() {
+    // plane_triangle_mapped.step: the same two instances as plane_triangle_assembly.step,
+    // written as mapped items (one targeted at a placement, one at a transformation
+    // operator, `pair` mapped into `frame`), and a draughting model's identity mapped item
+    // that places nothing.
+    for n in [5, 9] {
+        let nested = grids("plane_triangle_assembly.step", n);
+        let mapped = grids("plane_triangle_mapped.step", n);
+        assert_eq!(mapped.len(), 2, "{n} × {n}");
+        for (k, (a, b)) in nested.iter().zip(&mapped).enumerate() {
+            let (a, b) = (&a.result.grid, &b.result.grid);
+            assert_eq!(a.len(), b.len());
+            let worst = (0..a.len())
+                .map(|p| {
+                    let (x, y) = (node(a, p), node(b, p));
+                    (0..3).map(|c| (x[c] - y[c]).abs()).fold(0.0, f64::max)
+                })
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-11, "{n} × {n}: instance {k} is {worst:e} off");
+        }
+    }
+    // Through the CLI: the same file written.
+    let dir = tempfile::tempdir().unwrap();
+    for (name, out) in [
+        ("plane_triangle_assembly.step", "a.x"),
+        ("plane_triangle_mapped.step", "m.x"),
+    ] {
+        let path = file(name);
+        let o = ellipgrid(
+            dir.path(),
+            &[
+                "step",
+                "grid",
+                path.to_str().unwrap(),
+                "--all",
+                "--ni",
+                "5",
+                "--nj",
+                "5",
+                "-o",
+                out,
+            ],
+        );
+        assert!(o.status.success(), "{}", text(&o));
+    }
+    let (a, m) = (
+        ellipgrid::io::plot3d::read_plot3d(&dir.path().join("a.x")).unwrap(),
+        ellipgrid::io::plot3d::read_plot3d(&dir.path().join("m.x")).unwrap(),
+    );
+    assert_eq!(m.blocks.len(), 2);
+    for (x, y) in a.blocks.iter().zip(&m.blocks) {
+        use ellipgrid::io::Block::Surface;
+        let (Surface(x), Surface(y)) = (x, y) else {
+            panic!("surface blocks expected");
+        };
+        assert_eq!(x.len(), y.len());
+        let d = (0..x.len())
+            .map(|p| {
+                let (p, q) = (node(x, p), node(y, p));
+                (0..3).map(|c| (p[c] - q[c]).abs()).fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        assert!(d < 1e-11, "the CLI's blocks differ by {d:e}");
+    }
+}

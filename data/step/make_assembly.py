@@ -14,6 +14,14 @@ the parent):
 So the file's two faces are the triangle moved by p ↦ (10, 100, 0) + (−p_y, p_x, p_z) and
 p ↦ (0, 100, 5) + (p_z, p_x, p_y).
 
+plane_triangle_mapped.step: the same two instances written as AP203's other assembly form,
+mapped items: `pair`'s shape representation holds two MAPPED_ITEMs of the triangle's
+representation (REPRESENTATION_MAP with the origin #11), the first targeted at an
+AXIS2_PLACEMENT_3D, the second at a CARTESIAN_TRANSFORMATION_OPERATOR_3D (axis1 (0, 1, 0),
+axis3 (1, 0, 0), origin (0, 0, 5)); `frame`'s holds one MAPPED_ITEM of `pair` at (0, 100, 0).
+A DRAUGHTING_MODEL with an identity MAPPED_ITEM of the triangle (a presentation, as UG and
+CADDS write) places nothing: the faces are the two above.
+
 plane_triangle_assembly_inch.step: the same with both assemblies measured in inches (a
 CONVERSION_BASED_UNIT 'INCH' of 25.4 mm), the part still in millimetres: the faces in inches,
 p ↦ (10 − p_y/25.4, 100 + p_x/25.4, p_z/25.4) and (p_z/25.4, 100 + p_x/25.4, 5 + p_y/25.4).
@@ -41,6 +49,48 @@ REPRESENTATION_CONTEXT('Context #2','3D Context in inches') );
     for name, ctx, units in [("plane_triangle_assembly", "#73", ""),
                              ("plane_triangle_assembly_inch", "#400", inch)]:
         write(out / f"{name}.step", base, ctx, units)
+    mapped(out / "plane_triangle_mapped.step", base)
+
+
+def mapped(path, text):
+    """The part of `text` placed twice in `pair` and `pair` once in `frame` by mapped items."""
+    extra = """#500 = REPRESENTATION_MAP(#11,#10);
+#501 = AXIS2_PLACEMENT_3D('',#502,#503,#504);
+#502 = CARTESIAN_POINT('',(0.,0.,0.));
+#503 = DIRECTION('',(0.,0.,1.));
+#504 = DIRECTION('',(1.,0.,0.));
+#510 = MAPPED_ITEM('triangle 1',#500,#511);
+#511 = AXIS2_PLACEMENT_3D('',#512,#503,#513);
+#512 = CARTESIAN_POINT('',(10.,0.,0.));
+#513 = DIRECTION('',(0.,1.,0.));
+#520 = MAPPED_ITEM('triangle 2',#500,#521);
+#521 = CARTESIAN_TRANSFORMATION_OPERATOR_3D('','',#513,$,#522,$,#523);
+#522 = CARTESIAN_POINT('',(0.,0.,5.));
+#523 = DIRECTION('',(1.,0.,0.));
+#530 = SHAPE_REPRESENTATION('pair',(#501,#510,#520),#73);
+#531 = PRODUCT('pair','pair','',(#8));
+#532 = PRODUCT_DEFINITION_FORMATION('','',#531);
+#533 = PRODUCT_DEFINITION('design','',#532,#9);
+#534 = PRODUCT_DEFINITION_SHAPE('','',#533);
+#535 = SHAPE_DEFINITION_REPRESENTATION(#534,#530);
+#540 = REPRESENTATION_MAP(#501,#530);
+#541 = AXIS2_PLACEMENT_3D('',#542,#503,#504);
+#542 = CARTESIAN_POINT('',(0.,100.,0.));
+#543 = MAPPED_ITEM('pair',#540,#541);
+#544 = AXIS2_PLACEMENT_3D('',#502,#503,#504);
+#550 = SHAPE_REPRESENTATION('frame',(#544,#543),#73);
+#551 = PRODUCT('frame','frame','',(#8));
+#552 = PRODUCT_DEFINITION_FORMATION('','',#551);
+#553 = PRODUCT_DEFINITION('design','',#552,#9);
+#554 = PRODUCT_DEFINITION_SHAPE('','',#553);
+#555 = SHAPE_DEFINITION_REPRESENTATION(#554,#550);
+#560 = MAPPED_ITEM('',#500,#501);
+#561 = DRAUGHTING_MODEL('',(#501,#560),#73);
+ENDSEC;
+END-ISO-10303-21;"""
+    end = "ENDSEC;\nEND-ISO-10303-21;"
+    assert text.count(end) == 1
+    path.write_text(text.replace(end, extra) + "\n")
 
 
 def write(path, text, ctx, units):

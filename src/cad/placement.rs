@@ -41,7 +41,7 @@ pub(super) fn shell_placements(
     text: &str,
     shells: &[u64],
 ) -> Result<HashMap<u64, Vec<Matrix4>>, String> {
-    if !text.contains("ITEM_DEFINED_TRANSFORMATION") {
+    if !text.contains("ITEM_DEFINED_TRANSFORMATION") && !text.contains("MAPPED_ITEM") {
         return Ok(shells
             .iter()
             .map(|s| (*s, vec![Matrix4::identity()]))
@@ -54,6 +54,8 @@ pub(super) fn shell_placements(
     ids.sort_unstable();
     let mut shell_rep: HashMap<u64, u64> = HashMap::new();
     let mut rep_items: HashMap<u64, Vec<u64>> = HashMap::new();
+    // (representation, mapped item) of every mapped item of a shape representation
+    let mut mapped: Vec<(u64, u64)> = Vec::new();
     for &id in &ids {
         let [(name, args)] = bodies[&id].as_slice() else {
             continue;
@@ -63,6 +65,12 @@ pub(super) fn shell_placements(
         }
         let items = list(args[1]);
         for &item in &items {
+            if matches!(
+                bodies.get(&item).map(Vec::as_slice),
+                Some([("MAPPED_ITEM", _)])
+            ) {
+                mapped.push((id, item));
+            }
             for s in item_shells(&bodies, item) {
                 // a shell in two representations: both are the part's coordinates
                 match shell_rep.get(&s) {
@@ -137,18 +145,7 @@ pub(super) fn shell_placements(
             continue;
         };
         let (c1, c2) = (space.find(r1), space.find(r2));
-        // a component measured in another length unit than its parent: scaled to the parent's
-        let unit = |r: u64| {
-            bodies
-                .get(&r)
-                .and_then(|p| p.first())
-                .and_then(|(_, a)| a.get(2).and_then(|c| reference(c)))
-                .and_then(|c| metres_per_unit(&bodies, c))
-        };
-        let scale = match (unit(r1), unit(r2)) {
-            (Some(a), Some(b)) if a != b => Matrix4::from_scale(a / b),
-            _ => Matrix4::identity(),
-        };
+        let scale = unit_scale(&bodies, r1, r2);
         // the standard: item₁ in rep_1 (the component); some writers swap the items
         let in_space = |item: u64, s: u64| {
             rep_items
@@ -162,6 +159,17 @@ pub(super) fn shell_placements(
         };
         up.entry(c1).or_default().push((c2, id, to * scale * inv));
     }
+    // a mapped item places its map's representation, x₂ = M(target) M(origin)⁻¹ x₁
+    for (rep, item) in mapped {
+        let Some(m) = mapped_item(&bodies, item) else {
+            continue;
+        };
+        let (c1, c2) = (space.find(m.source), space.find(rep));
+        let scale = unit_scale(&bodies, m.source, rep);
+        up.entry(c1)
+            .or_default()
+            .push((c2, item, m.target * scale * m.origin_inverse));
+    }
     let mut memo: HashMap<u64, Vec<Matrix4>> = HashMap::new();
     let mut out = HashMap::new();
     for &s in shells {
@@ -172,6 +180,93 @@ pub(super) fn shell_placements(
         out.insert(s, placed);
     }
     Ok(out)
+}
+
+/// A `MAPPED_ITEM`'s representation map: the mapped representation, the inverse frame of
+/// the map's origin and the frame of the item's target (an `AXIS2_PLACEMENT_3D` or a
+/// `CARTESIAN_TRANSFORMATION_OPERATOR_3D`).
+struct Mapped {
+    source: u64,
+    origin_inverse: Matrix4,
+    target: Matrix4,
+}
+
+fn mapped_item(bodies: &Bodies, item: u64) -> Option<Mapped> {
+    let [("MAPPED_ITEM", a)] = bodies.get(&item)?.as_slice() else {
+        return None;
+    };
+    let [("REPRESENTATION_MAP", map)] = bodies.get(&reference(a.get(1)?)?)?.as_slice() else {
+        return None;
+    };
+    let origin = frame(bodies, reference(map.first()?)?)?;
+    let source = reference(map.get(1)?)?;
+    let t = reference(a.get(2)?)?;
+    let target = frame(bodies, t).or_else(|| operator(bodies, t))?;
+    Some(Mapped {
+        source,
+        origin_inverse: origin.invert()?,
+        target,
+    })
+}
+
+/// The matrix of a `CARTESIAN_TRANSFORMATION_OPERATOR_3D` (axes 1, 2, 3 as given or made up
+/// as for a placement, the local origin, a uniform scale; default axes x, y, z, scale 1).
+fn operator(bodies: &Bodies, id: u64) -> Option<Matrix4> {
+    let parts = bodies.get(&id)?;
+    let (_, a) = parts
+        .iter()
+        .find(|(n, _)| *n == "CARTESIAN_TRANSFORMATION_OPERATOR_3D")
+        .or_else(|| {
+            parts
+                .iter()
+                .find(|(n, _)| *n == "CARTESIAN_TRANSFORMATION_OPERATOR")
+        })?;
+    let dir = |k: usize| {
+        a.get(k)
+            .and_then(|x| reference(x))
+            .and_then(|r| numbers(bodies, r, "DIRECTION"))
+    };
+    let o = numbers(bodies, reference(a.get(4)?)?, "CARTESIAN_POINT")?;
+    let scale = match a.get(5).map(|x| x.trim()) {
+        None | Some("$") => 1.0,
+        Some(x) => x
+            .parse::<f64>()
+            .ok()
+            .filter(|s| s.is_finite() && *s > 0.0)?,
+    };
+    let z = dir(6).unwrap_or(Vector3::new(0.0, 0.0, 1.0));
+    if z.magnitude() == 0.0 {
+        return None;
+    }
+    let z = z.normalize();
+    let x = dir(2).unwrap_or(Vector3::new(1.0, 0.0, 0.0));
+    let x = x - z * x.dot(z);
+    if x.magnitude() < 1e-12 {
+        return None;
+    }
+    let x = x.normalize();
+    let y = z.cross(x);
+    Some(Matrix4::from_cols(
+        (x * scale).extend(0.0),
+        (y * scale).extend(0.0),
+        (z * scale).extend(0.0),
+        o.extend(1.0),
+    ))
+}
+
+/// A component measured in another length unit than its parent: the scale to the parent's.
+fn unit_scale(bodies: &Bodies, component: u64, parent: u64) -> Matrix4 {
+    let unit = |r: u64| {
+        bodies
+            .get(&r)
+            .and_then(|p| p.first())
+            .and_then(|(_, a)| a.get(2).and_then(|c| reference(c)))
+            .and_then(|c| metres_per_unit(bodies, c))
+    };
+    match (unit(component), unit(parent)) {
+        (Some(a), Some(b)) if a != b => Matrix4::from_scale(a / b),
+        _ => Matrix4::identity(),
+    }
 }
 
 /// The frames (to the root) of every instance of space `s`.
