@@ -110,8 +110,14 @@ fn a_comb_whose_corner_sets_and_bisector_cuts_fold_is_cut_by_chords_into_rectang
 
 #[test]
 fn step_grid_writes_the_comb_as_thirteen_blocks() {
+    for name in ["plane_comb.step", "cylinder_comb.step"] {
+        step_grid_writes_thirteen_blocks(name);
+    }
+}
+
+fn step_grid_writes_thirteen_blocks(name: &str) {
     let dir = tempfile::tempdir().unwrap();
-    let path = root().join("data/step/plane_comb.step");
+    let path = root().join("data/step").join(name);
     let o = ellipgrid(
         dir.path(),
         &[
@@ -138,4 +144,47 @@ fn step_grid_writes_the_comb_as_thirteen_blocks() {
     );
     assert!(!t.contains("FOLDED"), "{t}");
     assert!(dir.path().join("c.vtm").exists(), "{t}");
+}
+
+#[test]
+fn the_comb_wrapped_on_a_cylinder_is_cut_the_same_way_and_its_area_converges_at_second_order() {
+    // cylinder_comb.step: the comb on the cylinder of radius 40 about z (make_comb.py), its
+    // scaled (u, v) plane the plane comb's; the exact area is the plane comb's (developable),
+    // which the grids' flat cells reach at second order.
+    const R: f64 = 40.0;
+    let path = root().join("data/step/cylinder_comb.step");
+    let face = read_step_faces(&path).unwrap().remove(0);
+    let d = DistributionSpec::Uniform {};
+    let mut errors = Vec::new();
+    for n in [17, 33, 65] {
+        let mut solver = by_name("multigrid").unwrap();
+        let gs = grid_face_chords(&face, (n, n), &d, &d, solver.as_mut(), "c")
+            .unwrap_or_else(|e| panic!("{n}: {e}"));
+        assert_eq!(gs.len(), 13, "{n}");
+        assert_eq!(shared_sides(&gs), 12, "{n}");
+        for (b, g) in gs.iter().enumerate() {
+            assert!(!g.quality.is_folded(), "{n}, block {b}: {}", g.quality);
+            let grid = &g.result.grid;
+            for p in 0..grid.ni() * grid.nj() {
+                let x = node(grid, p);
+                let r = x[0].hypot(x[1]);
+                assert!(
+                    (r - R).abs() < 1e-9 * R,
+                    "{n}, block {b}: node {p} at r = {r}"
+                );
+                assert!(x[2] > -1e-9 && x[2] < 68.0 + 1e-9, "{n}: node {p}");
+            }
+        }
+        let area: f64 = gs.iter().map(|g| grid_area(&g.result.grid)).sum();
+        assert!(area < AREA, "{n}: flat cells inside the cylinder: {area}");
+        errors.push(AREA - area);
+    }
+    // error ratio ≈ 4 per halving of the spacing (the chord's sag, 1 − sin θ / θ ≈ θ² / 6)
+    for w in errors.windows(2) {
+        let ratio = w[0] / w[1];
+        assert!(
+            (3.6..4.4).contains(&ratio),
+            "errors {errors:?}: ratio {ratio}"
+        );
+    }
 }

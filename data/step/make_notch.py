@@ -16,12 +16,14 @@ PTS = [(0, 0), (4, 0), (4, 3), (2, 0.5), (0, 3)]
 
 
 def write_polygon_face(name, pts, out, script, curve=None, coord="{:.2f}",
-                       stamp="2026-11-25T23:00:00"):
+                       stamp="2026-11-25T23:00:00", surface=None, lift=None):
     """Writes OUT/NAME.step: one planar face bounded by the edges of the loop PTS
     (counterclockwise about +z in the plane z = 0, millimetres); SCRIPT goes in FILE_NAME with
     the time STAMP. Edge k runs from PTS[k] to the next point along CURVE(add, k, a, b), which
     adds the entities of its curve through add(text) -> entity number and returns the
-    curve's number (default: a LINE); COORD formats the points' coordinates."""
+    curve's number (default: a LINE); COORD formats the points' coordinates. SURFACE(add,
+    axis) adds the face's surface (default: the PLANE z = 0 of the placement `axis`) and
+    LIFT(px, py) places a loop point in 3D (default: (px, py, 0))."""
     e = []
 
     def add(text):
@@ -42,10 +44,14 @@ def write_polygon_face(name, pts, out, script, curve=None, coord="{:.2f}",
     z = add("DIRECTION('',(0.,0.,1.))")
     x = add("DIRECTION('',(1.,0.,0.))")
     axis = add(f"AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})")
-    plane = add(f"PLANE('',#{axis})")
+    plane = surface(add, axis) if surface else add(f"PLANE('',#{axis})")
     verts = []
     for (px, py) in pts:
-        p = add(f"CARTESIAN_POINT('',({coord.format(px)},{coord.format(py)},0.))")
+        if lift:
+            q = ",".join(repr(c) for c in lift(px, py))
+            p = add(f"CARTESIAN_POINT('',({q}))")
+        else:
+            p = add(f"CARTESIAN_POINT('',({coord.format(px)},{coord.format(py)},0.))")
         verts.append(add(f"VERTEX_POINT('',#{p})"))
     oriented = []
 
