@@ -271,6 +271,47 @@ fn a_closed_cylinder_band_without_a_seam_edge_is_four_blocks_across_it() {
 }
 
 #[test]
+fn a_closed_nurbs_band_is_periodic_across_the_rows_where_it_closes() {
+    // nurbs_band_seamless.step (make_band.py): the same band on the same cylinder as a
+    // rational B-spline whose first and last rows of control points are equal (no seam
+    // edge, no period in truck): its loops cross that seam, which is found and made periodic.
+    let faces = read_step_faces(&file("nurbs_band_seamless.step")).unwrap();
+    assert_eq!(faces[0].route(), Route::Holes(1));
+    let on_circle =
+        |x: [f64; 3]| x[2].abs().min((x[2] - 2.0).abs()) + (x[0].hypot(x[1]) - 1.0).abs();
+    let known = Known {
+        surface: &|x| (x[0].hypot(x[1]) - 1.0).abs(),
+        normal: &|x| [x[0], x[1], 0.0],
+        holes: &[&on_circle],
+        hole_tol: 1e-11,
+        area: 4.0 * PI,
+        seam: &|_| false,
+    };
+    check_face("nurbs_band_seamless.step", 1, &known);
+    // Through the CLI: four blocks written.
+    let dir = tempfile::tempdir().unwrap();
+    let step = file("nurbs_band_seamless.step");
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step",
+            "grid",
+            step.to_str().unwrap(),
+            "--all",
+            "--ni",
+            "17",
+            "--nj",
+            "9",
+            "-o",
+            "band.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let p = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("band.x")).unwrap();
+    assert_eq!(p.blocks.len(), 4);
+}
+
+#[test]
 fn step_grid_all_writes_every_face_of_the_plate_with_its_hole_blocks() {
     let dir = tempfile::tempdir().unwrap();
     let step = file("plate_with_holes.step");

@@ -210,7 +210,7 @@ pub fn grid_face_by(
 /// surfaces, unbounded for the others (their ranges in truck are those of the generating
 /// curve segment, not of the surface).
 pub(super) fn bounds(s: &CadSurface) -> [[f64; 2]; 2] {
-    match s.0 {
+    match s.inner() {
         StepSurface::BSplineSurface(_) | StepSurface::NurbsSurface(_) => s.bounds(),
         _ => [[f64::NEG_INFINITY, f64::INFINITY]; 2],
     }
@@ -224,7 +224,7 @@ fn trimmed(
     place: &str,
     sets: Corners,
 ) -> Result<FaceGrid> {
-    let surface = TruckSurface(face.cad_surface.clone());
+    let surface = TruckSurface::new(face.cad_surface.clone());
     let edges = match &face.loops {
         Ok(l) => &l[0],
         Err(e) => return Err(Error::input(place, e.clone())),

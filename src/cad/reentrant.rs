@@ -79,7 +79,7 @@ pub(super) fn grid_cut(
         )));
     }
     let edges = face.loops.as_ref().map_err(|e| err(e.clone()))?;
-    let surface = TruckSurface(face.cad_surface.clone());
+    let surface = TruckSurface::new(face.cad_surface.clone());
     let surface: &CadSurface = &surface;
     quietly(|| {
         let mut lp = FaceLoop::new(

@@ -116,7 +116,7 @@ pub fn grid_face_blocks(
             format!("a surface grid needs at least 3 × 3 nodes, got {ni} × {nj}"),
         ));
     }
-    let surface = TruckSurface(face.cad_surface.clone());
+    let surface = TruckSurface::new(face.cad_surface.clone());
     quietly(|| holes(face, &surface, (ni, nj), [dist_i, dist_j], solver, place)).unwrap_or_else(
         |_| {
             Err(Error::input(

@@ -239,7 +239,12 @@ impl<'a> FaceLoop<'a> {
     fn initial_uv(&self, x: Vec3) -> Result<[f64; 2], String> {
         let p = Point3::new(x.x, x.y, x.z);
         let found = super::quietly(|| {
-            SearchNearestParameter::<D2>::search_nearest_parameter(&self.surface.0, p, None, 100)
+            SearchNearestParameter::<D2>::search_nearest_parameter(
+                self.surface.inner(),
+                p,
+                None,
+                100,
+            )
         })
         .ok()
         .flatten();
@@ -268,7 +273,7 @@ impl<'a> FaceLoop<'a> {
 
     /// The parameter box for a coarse search: bounded directions, one period of periodic ones.
     fn search_box(&self) -> Option<[[f64; 2]; 2]> {
-        let (ru, rv) = self.surface.0.try_range_tuple();
+        let (ru, rv) = self.surface.inner().try_range_tuple();
         let r = [ru, rv];
         let mut b = [[0.0; 2]; 2];
         for d in 0..2 {

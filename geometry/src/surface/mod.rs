@@ -10,7 +10,7 @@
 //! | `bspline` | [`BSplineSurf`]: fast local evaluation of truck B-spline / NURBS surfaces |
 //! | `analytic` | [`Plane`], [`TanhBump`] (paper Fig. 31), [`Scherk`] minimal surface |
 //! | `project` | [`project`], [`project_within`], [`project_to_edge`]: safeguarded Newton for the closest point |
-//! | `truck` | [`TruckSurface`], [`TruckCurve`]: any truck surface / curve in its own parameters |
+//! | `truck` | [`TruckSurface`], [`TruckCurve`]: any truck surface / curve in its own parameters (a surface that closes on itself periodic there) |
 //! | `locate` | [`SurfaceLocator`]: BVH of sampled cells ([`crate::BoxTree`]) + Newton |
 //! | `warp` | [`Warp`], [`Warped`]: a smooth random re-parametrization x(W(u, v)) (fixed seed) |
 //!

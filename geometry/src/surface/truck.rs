@@ -22,15 +22,48 @@ fn p3(p: Point3) -> Vec3 {
     Vec3::new(p.x, p.y, p.z)
 }
 
-/// A truck surface in its own parameters (u, v).
+/// A truck surface in its own parameters (u, v). Where its two boundary curves of one
+/// direction coincide (a B-spline tube closed by equal first and last control rows, a ring
+/// revolved from a closed profile), the surface closes on itself there and is taken as
+/// periodic in that direction ([`TruckSurface::periods`]), evaluated with the parameter
+/// wrapped into its range: a face's loop may then cross that seam as it crosses a cylinder's.
 #[derive(Clone, Debug)]
-pub struct TruckSurface<S>(pub S);
+pub struct TruckSurface<S> {
+    surface: S,
+    /// (start, period) of each direction in which the surface closes but truck has no period.
+    closed: [Option<(f64, f64)>; 2],
+}
+
+/// Samples along a boundary curve to compare it with the opposite one.
+const CLOSURE_SAMPLES: usize = 17;
+/// Two boundary curves farther apart than this fraction of the surface's size are not one.
+const CLOSURE_TOL: f64 = 1e-9;
 
 impl<S: ParametricSurface3D> TruckSurface<S> {
+    /// The surface, with the directions in which it closes on itself found.
+    pub fn new(surface: S) -> TruckSurface<S> {
+        let closed = closure(&surface);
+        TruckSurface { surface, closed }
+    }
+
+    /// The truck surface.
+    pub fn inner(&self) -> &S {
+        &self.surface
+    }
+
+    /// (u, v) wrapped into the range of the directions in which the surface closes.
+    fn wrap(&self, u: f64, v: f64) -> (f64, f64) {
+        let w = |x: f64, c: Option<(f64, f64)>| match c {
+            Some((a, t)) if x.is_finite() => a + (x - a).rem_euclid(t),
+            _ => x,
+        };
+        (w(u, self.closed[0]), w(v, self.closed[1]))
+    }
+
     /// The parameter box Newton may move in: the surface's range in bounded directions,
     /// unbounded in periodic ones (a face may straddle the seam) and where truck gives none.
     pub fn bounds(&self) -> [[f64; 2]; 2] {
-        let (ru, rv) = self.0.parameter_range();
+        let (ru, rv) = self.surface.parameter_range();
         let periods = self.periods();
         let b = |r: (Bound<f64>, Bound<f64>), periodic: bool| {
             let lo = match r.0 {
@@ -46,15 +79,71 @@ impl<S: ParametricSurface3D> TruckSurface<S> {
         [b(ru, periods[0].is_some()), b(rv, periods[1].is_some())]
     }
 
-    /// The periods of u and v, where the surface is periodic.
+    /// The periods of u and v, where the surface is periodic or closes on itself.
     pub fn periods(&self) -> [Option<f64>; 2] {
-        [self.0.u_period(), self.0.v_period()]
+        let p = [self.surface.u_period(), self.surface.v_period()];
+        [0, 1].map(|d| p[d].or(self.closed[d].map(|c| c.1)))
     }
+}
+
+/// A finite parameter range.
+fn finite(r: (Bound<f64>, Bound<f64>)) -> Option<(f64, f64)> {
+    match r {
+        (Bound::Included(a) | Bound::Excluded(a), Bound::Included(b) | Bound::Excluded(b))
+            if a.is_finite() && b.is_finite() && b > a =>
+        {
+            Some((a, b))
+        }
+        _ => None,
+    }
+}
+
+/// (start, period) of each direction of a bounded, non-periodic range whose two boundary
+/// curves coincide (within [`CLOSURE_TOL`] of the surface's size) and are not one point.
+fn closure<S: ParametricSurface3D>(s: &S) -> [Option<(f64, f64)>; 2] {
+    let (ru, rv) = s.parameter_range();
+    let periods = [s.u_period(), s.v_period()];
+    let ranges = [finite(ru), finite(rv)];
+    // the other direction's samples: its range, or one period of it
+    let across = |d: usize| -> Option<(f64, f64)> {
+        ranges[d].or_else(|| periods[d].filter(|t| *t > 0.0).map(|t| (0.0, t)))
+    };
+    let at = |d: usize, x: f64, y: f64| p3(if d == 0 { s.subs(x, y) } else { s.subs(y, x) });
+    [0, 1].map(|d| {
+        let (a, b) = ranges[d].filter(|_| periods[d].is_none())?;
+        let (c0, c1) = across(1 - d)?;
+        let n = CLOSURE_SAMPLES;
+        let ts: Vec<f64> = (0..n)
+            .map(|k| c0 + (c1 - c0) * k as f64 / (n - 1) as f64)
+            .collect();
+        let (lo, hi): (Vec<Vec3>, Vec<Vec3>) =
+            ts.iter().map(|&t| (at(d, a, t), at(d, b, t))).unzip();
+        // the surface's size from a coarse net of points
+        let (mut min, mut max) = (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY));
+        for i in 0..n {
+            let x = a + (b - a) * i as f64 / (n - 1) as f64;
+            for &t in &ts {
+                let q = at(d, x, t);
+                min = min.inf(&q);
+                max = max.sup(&q);
+            }
+        }
+        let size = (max - min).norm();
+        let length: f64 = lo.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+        let apart = lo
+            .iter()
+            .zip(&hi)
+            .map(|(p, q)| (p - q).norm())
+            .fold(0.0, f64::max);
+        (size.is_finite() && size > 0.0 && length > 1e-6 * size && apart <= CLOSURE_TOL * size)
+            .then_some((a, b - a))
+    })
 }
 
 impl<S: ParametricSurface3D + Send + Sync> Surface for TruckSurface<S> {
     fn eval(&self, u: f64, v: f64) -> SurfacePoint {
-        let s = &self.0;
+        let (u, v) = self.wrap(u, v);
+        let s = &self.surface;
         SurfacePoint {
             x: p3(s.subs(u, v)),
             xu: v3(s.uder(u, v)),
@@ -66,7 +155,8 @@ impl<S: ParametricSurface3D + Send + Sync> Surface for TruckSurface<S> {
     }
 
     fn point(&self, u: f64, v: f64) -> Vec3 {
-        p3(self.0.subs(u, v))
+        let (u, v) = self.wrap(u, v);
+        p3(self.surface.subs(u, v))
     }
 }
 
@@ -140,7 +230,7 @@ mod tests {
 
     #[test]
     fn truck_sphere_derivatives_and_projection_across_the_seam() {
-        let s = TruckSurface(Sphere::new(Point3::new(1.0, 2.0, 3.0), 1.5));
+        let s = TruckSurface::new(Sphere::new(Point3::new(1.0, 2.0, 3.0), 1.5));
         // Derivatives against central differences.
         let (u, v, h) = (0.7, 1.1, 1e-5);
         let e = s.eval(u, v);
@@ -159,6 +249,60 @@ mod tests {
             (u1 - 1.2).abs() < 1e-10 && (v1 + 0.05).abs() < 1e-10,
             "{u1} {v1}"
         );
+    }
+
+    #[test]
+    fn a_bspline_tube_closed_on_itself_is_periodic_there_and_a_disc_is_not() {
+        // A polygonal tube: u around a square (first and last rows equal), v along z.
+        let ring = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0), (1.0, 0.0)];
+        let rows = |z: [f64; 2]| -> Vec<Vec<Point3>> {
+            ring.iter()
+                .map(|&(x, y)| z.iter().map(|&z| Point3::new(x, y, z)).collect())
+                .collect()
+        };
+        let knots = || (KnotVec::uniform_knot(1, 4), KnotVec::bezier_knot(1));
+        let tube = TruckSurface::new(BSplineSurface::new(knots(), rows([0.0, 2.0])));
+        assert_eq!(tube.periods(), [Some(1.0), None]);
+        assert_eq!(tube.bounds()[0], [f64::NEG_INFINITY, f64::INFINITY]);
+        // evaluated a period away, and across the seam, as inside the range
+        for (u, v) in [(0.1, 0.3), (0.95, 0.7)] {
+            for k in [-2.0, -1.0, 1.0, 3.0] {
+                let (a, b) = (tube.eval(u, v), tube.eval(u + k, v));
+                assert!((a.x - b.x).norm() < 1e-14 && (a.xu - b.xu).norm() < 1e-12);
+            }
+        }
+        // a point just across the seam is found there, not at the far end of the range
+        let target = tube.point(0.02, 0.5);
+        let (u1, v1) = project_within(&tube, target, (-0.03, 0.5), tube.bounds()).unwrap();
+        assert!(
+            (u1 + 1.0 - 1.02).abs() < 1e-10 || (u1 - 0.02).abs() < 1e-10,
+            "{u1}"
+        );
+        assert!((tube.point(u1, v1) - target).norm() < 1e-12);
+        // the same rows shifted a little apart at the end: open
+        let mut open = rows([0.0, 2.0]);
+        open[4][0].y += 1e-6;
+        let open = TruckSurface::new(BSplineSurface::new(knots(), open));
+        assert_eq!(open.periods(), [None, None]);
+        // a disc's end rows are one point each (its centre and rim differ): not closed in v
+        let disc: Vec<Vec<Point3>> = ring
+            .iter()
+            .map(|&(x, y)| vec![Point3::new(0.0, 0.0, 0.0), Point3::new(x, y, 0.0)])
+            .collect();
+        let disc = TruckSurface::new(BSplineSurface::new(knots(), disc));
+        assert_eq!(disc.periods(), [Some(1.0), None]);
+        // a patch whose two u-ends collapse to one and the same point: not closed in u
+        let lens: Vec<Vec<Point3>> = (0..3)
+            .map(|i| {
+                let (r, z) = if i == 1 { (1.0, 1.0) } else { (0.0, 0.0) };
+                vec![Point3::new(-r, 0.0, z), Point3::new(r, 0.0, z)]
+            })
+            .collect();
+        let lens = TruckSurface::new(BSplineSurface::new(
+            (KnotVec::uniform_knot(1, 2), KnotVec::bezier_knot(1)),
+            lens,
+        ));
+        assert_eq!(lens.periods(), [None, None]);
     }
 
     #[test]
