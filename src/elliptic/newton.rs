@@ -14,7 +14,8 @@
 //! # A step
 //! 1. Evaluate A, b and r = b − A x at the iterate (reused from the last line search).
 //! 2. Set up (or update) the linear solver for A, as a Picard step would.
-//! 3. Linearise (the coupling G) and solve J δ = r by FGMRES to the forcing term
+//! 3. Linearise (the coupling G) and solve J δ = r by FGMRES (from zero: no product for the
+//!    first residual) to the forcing term
 //!    (`forcing`: Eisenstat–Walker), rows scaled by A's diagonal, so that the Krylov
 //!    residual weighs every node as the reported residual does.
 //! 4. Line search: accept x + λδ for λ = 1, then ½, if the residual of [24] (max over nodes,

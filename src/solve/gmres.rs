@@ -86,7 +86,14 @@ pub fn gmres(
             update(r, |i, ri| *ri = b[i] - w[i]);
             dot(r, r).sqrt()
         };
-    let mut beta = residual(apply, x, &mut v[0], w);
+    // from zero the residual is b itself: no product with the operator (Newton's corrections
+    // start from zero: one product with the Jacobian fewer per Newton step)
+    let mut beta = if x.iter().all(|&xi| xi == 0.0) {
+        update(&mut v[0], |i, ri| *ri = b[i]);
+        dot(&v[0], &v[0]).sqrt()
+    } else {
+        residual(apply, x, &mut v[0], w)
+    };
     let r0 = beta;
     if let Some(done) = SolveInfo::start(r0)? {
         return Ok(done);
@@ -297,6 +304,58 @@ mod tests {
         assert!(x.iter().zip(&b).all(|(x, b)| (x - 0.5 * b).abs() < 1e-14));
         // w, v_0, v_1 and z_0
         assert_eq!(ws.bytes(), 8 * n * 4);
+    }
+
+    /// From zero the first residual is b, with no product (#16: a Newton step's Krylov solve
+    /// of k iterations costs k + 1 products with the Jacobian, not k + 2); from a non-zero
+    /// start the residual is computed, and both give the same solution.
+    #[test]
+    fn a_start_from_zero_takes_no_product_for_the_first_residual() {
+        let n = 50;
+        let apply = |v: &[f64], out: &mut [f64]| {
+            for i in 0..n {
+                let l = if i > 0 { v[i - 1] } else { 0.0 };
+                let u = if i + 1 < n { v[i + 1] } else { 0.0 };
+                out[i] = 3.0 * v[i] - l - 0.5 * u;
+            }
+        };
+        let b: Vec<f64> = (0..n).map(|i| 1.0 + (i as f64 * 0.3).sin()).collect();
+        let ctl = SolveControl {
+            rel_tol: 1e-12,
+            max_iter: 100,
+        };
+        let mut ws = GmresWorkspace::default();
+        let run = |x: &mut Vec<f64>, ws: &mut GmresWorkspace| {
+            let mut products = 0usize;
+            let info = gmres(
+                &mut |v, o| {
+                    products += 1;
+                    apply(v, o)
+                },
+                &mut |v, o| o.copy_from_slice(v),
+                &b,
+                x,
+                &ctl,
+                100,
+                ws,
+            )
+            .unwrap();
+            (info, products)
+        };
+        let mut x = vec![0.0; n];
+        let (info, products) = run(&mut x, &mut ws);
+        assert!(info.converged, "{info:?}");
+        // one product per iteration and the true residual at the end
+        assert_eq!(products, info.iterations + 1);
+        // a start of ~0: the first residual computed, the same solution
+        let mut y = vec![0.0; n];
+        y[7] = 1e-300;
+        let (again, more) = run(&mut y, &mut ws);
+        assert!(again.converged, "{again:?}");
+        assert_eq!(more, again.iterations + 2);
+        for (u, v) in x.iter().zip(&y) {
+            assert!((u - v).abs() < 1e-10, "{u} vs {v}");
+        }
     }
 
     #[test]
