@@ -11,7 +11,8 @@
 //! ([`super::holes::rings`]). The cuts run along the sectors' i direction, as the cuts
 //! between strips.
 
-use super::holes::{at, centroid, crossings, locate, rings, Cut, Layout, Node, Part, Side};
+use super::hole_cuts::crossings;
+use super::holes::{at, centroid, locate, rings, Cut, Layout, Node, Part, Side};
 use super::trim::{FaceLoop, LoopPoint};
 use std::f64::consts::{PI, TAU};
 

@@ -9,7 +9,6 @@
 //! along its normal, kept if each gap between consecutive holes is open and each line
 //! halfway across it crosses the outer loop twice, widest narrowest gap first.
 
-use super::holes::crossings;
 use super::trim::LoopPoint;
 
 /// The straight line n · q = c, n a unit vector (or a coordinate axis).
@@ -131,4 +130,18 @@ pub(super) fn candidates(polys: &[Vec<(LoopPoint, [f64; 2])>]) -> Vec<Strips> {
     oblique.sort_by(|x, y| y.0.total_cmp(&x.0));
     out.extend(oblique.into_iter().take(TRIES).map(|x| x.1));
     out
+}
+
+/// The polygon segments where `f` changes sign, with whether it increases along the loop.
+pub(super) fn crossings(
+    poly: &[(LoopPoint, [f64; 2])],
+    f: impl Fn([f64; 2]) -> f64,
+) -> Vec<(usize, bool)> {
+    let n = poly.len();
+    (0..n)
+        .filter_map(|k| {
+            let (a, b) = (f(poly[k].1), f(poly[(k + 1) % n].1));
+            ((a < 0.0) != (b < 0.0)).then_some((k, b > a))
+        })
+        .collect()
 }

@@ -5,7 +5,9 @@
 //!   inside it (holes on periodic surfaces are moved by whole periods next to the outer loop).
 //! - Several holes: the face is cut into *strips* of one hole each by straight (u, v) lines
 //!   u = const (or v = const, whichever direction separates the holes by the widest gaps),
-//!   halfway between the holes; each line must cross the outer loop exactly twice.
+//!   halfway between the holes; each line must cross the outer loop exactly twice. Where
+//!   that fails, parallel oblique lines ([`super::hole_cuts`]), then a fan of cuts from a
+//!   central hole into one-hole sectors ([`super::fan`]).
 //! - Each strip has four corners: the ends of its cuts, and on the outer loop the convex
 //!   vertices turning most (by more than 20°), else the points farthest from the chord of
 //!   the stretch they split (a fillet's middle), else the middle of the longest stretch. A
@@ -16,8 +18,7 @@
 //!   strip's corners. Block k is bounded by the hole (its E3: j = 0 on the hole), the cuts k
 //!   and k + 1 (E2, E1, running from the hole outwards) and the strip's side k (E4).
 
-use super::fan::fan;
-use super::hole_cuts::{candidates, Strips};
+use super::hole_cuts::{candidates, crossings, Strips};
 use super::trim::{FaceLoop, LoopPoint, NS};
 
 /// A side of a block, from one of its corners to the next.
@@ -179,20 +180,6 @@ pub(super) fn locate(
     })
 }
 
-/// The polygon segments where `f` changes sign, with whether it increases along the loop.
-pub(super) fn crossings(
-    poly: &[(LoopPoint, [f64; 2])],
-    f: impl Fn([f64; 2]) -> f64,
-) -> Vec<(usize, bool)> {
-    let n = poly.len();
-    (0..n)
-        .filter_map(|k| {
-            let (a, b) = (f(poly[k].1), f(poly[(k + 1) % n].1));
-            ((a < 0.0) != (b < 0.0)).then_some((k, b > a))
-        })
-        .collect()
-}
-
 /// Arclength position of a loop point from the loop's start.
 fn position(lp: &FaceLoop, p: LoopPoint) -> f64 {
     (0..p.edge).map(|k| lp.length(k)).sum::<f64>() + p.sigma * lp.length(p.edge)
@@ -281,6 +268,7 @@ pub(super) fn layout(
     ccw: &[bool],
     scale: [f64; 2],
     orientation: bool,
+    last: Fallback,
 ) -> Result<Layout, String> {
     let nh = loops.len() - 1;
     let polys: Vec<_> = loops.iter().map(|lp| polygon(lp, scale)).collect();
@@ -313,8 +301,9 @@ pub(super) fn layout(
             }
         }
     }
-    // Last, a fan of cuts about a central hole (a flange's bore and its bolt circle).
-    if let Ok(lay) = fan(loops, ccw, scale, orientation, &polys) {
+    // Last, `last` (the caller's fan of cuts about a central hole: a flange's bore and its
+    // bolt circle).
+    if let Ok(lay) = last(loops, ccw, scale, orientation, &polys) {
         return Ok(lay);
     }
     Err(first.unwrap_or_else(|| {
@@ -441,6 +430,16 @@ fn strips(
     let strips = order.iter().copied().zip(strips).collect();
     rings(loops, ccw, scale, orientation, polys, cuts, strips)
 }
+
+/// A layout tried where no line set works: loops, ccw, scale, orientation as
+/// [`layout`]'s, and the loops' polygons.
+pub(super) type Fallback = fn(
+    &mut [FaceLoop],
+    &[bool],
+    [f64; 2],
+    bool,
+    &[Vec<(LoopPoint, [f64; 2])>],
+) -> Result<Layout, String>;
 
 /// A part of a face holding one hole: the hole's loop, the part's four corners and its four
 /// sides (side k from corner k to corner k + 1), counterclockwise in (u, v).
