@@ -89,9 +89,14 @@ struct Known<'a> {
 /// the same f64s there); the summed area converging to the exact one at second order.
 /// Returns the area errors.
 fn check_face(name: &str, k: usize, known: &Known) -> Vec<f64> {
+    check_face_at(name, k, known, [9, 17, 33])
+}
+
+/// [`check_face`] with `levels` nodes along the cuts (twice as many less one along the holes).
+fn check_face_at(name: &str, k: usize, known: &Known, levels: [usize; 3]) -> Vec<f64> {
     let mut errs = Vec::new();
     let nh = known.holes.len();
-    for n in [9, 17, 33] {
+    for n in levels {
         let gs = blocks(name, k, (2 * n - 1, n));
         assert_eq!(gs.len(), 4 * nh, "{name} face {k}");
         let mut total = 0.0;
@@ -477,19 +482,102 @@ fn step_grid_face_with_a_hole_writes_its_four_blocks() {
 }
 
 #[test]
+fn holes_that_no_u_or_v_cut_separates_are_cut_by_oblique_lines() {
+    // plane_holes_overlapping.step: two holes whose u ranges and v ranges both overlap;
+    // plane_bolt_circle.step: four holes on a bolt circle at 45°, 135°, 225°, 315° (make_bolt_circle.py).
+    let overlapping = Known {
+        surface: &|x| x[2].abs(),
+        normal: &|_| [0.0, 0.0, 1.0],
+        holes: &[&circle([1.2, 1.1], 0.8), &circle([2.6, 1.9], 0.8)],
+        hole_tol: 1e-11,
+        area: 12.0 - 1.28 * PI,
+        seam: &|_| false,
+    };
+    check_face_at(
+        "plane_holes_overlapping.step",
+        1,
+        &overlapping,
+        [17, 33, 65],
+    );
+    let s = 2.6 * std::f64::consts::FRAC_1_SQRT_2;
+    let bolt = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+        .map(|(a, b)| circle([5.0 + a * s, 4.0 + b * s], 0.5));
+    let known = Known {
+        surface: &|x| x[2].abs(),
+        normal: &|_| [0.0, 0.0, 1.0],
+        holes: &[&bolt[0], &bolt[1], &bolt[2], &bolt[3]],
+        hole_tol: 1e-11,
+        area: 80.0 - PI,
+        seam: &|_| false,
+    };
+    let errs = check_face_at("plane_bolt_circle.step", 1, &known, [17, 33, 65]);
+    assert!(errs[2] < 1e-3, "{errs:?}");
+}
+
+#[test]
+fn a_flange_is_cut_by_a_fan_of_cuts_from_its_bore() {
+    // plane_flange.step: a bore r = 2 and six holes r = 0.5 on a circle of 3.2 about it; the
+    // six rings' j = 0 lie on the six holes, the bore is a side of the sectors.
+    let six: Vec<_> = (0..6)
+        .map(|k| {
+            let a = (60.0 * k as f64).to_radians();
+            circle([5.0 + 3.2 * a.cos(), 5.0 + 3.2 * a.sin()], 0.5)
+        })
+        .collect();
+    let known = Known {
+        surface: &|x| x[2].abs(),
+        normal: &|_| [0.0, 0.0, 1.0],
+        holes: &[&six[0], &six[1], &six[2], &six[3], &six[4], &six[5]],
+        hole_tol: 1e-11,
+        area: 19.5 * PI,
+        seam: &|_| false,
+    };
+    let errs = check_face_at("plane_flange.step", 1, &known, [17, 33, 65]);
+    assert!(errs[2] < 1e-3, "{errs:?}");
+}
+
+#[test]
+fn step_grid_cuts_a_bolt_circle_and_a_flange_into_rings() {
+    for (name, blocks) in [("plane_bolt_circle.step", 16), ("plane_flange.step", 24)] {
+        let dir = tempfile::tempdir().unwrap();
+        let step = file(name);
+        let o = ellipgrid(
+            dir.path(),
+            &[
+                "step",
+                "grid",
+                step.to_str().unwrap(),
+                "--face",
+                "1",
+                "--ni",
+                "17",
+                "--nj",
+                "17",
+                "-o",
+                "h.x",
+            ],
+        );
+        assert!(o.status.success(), "{}", text(&o));
+        let written = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("h.x")).unwrap();
+        assert_eq!(written.blocks.len(), blocks, "{name}");
+    }
+}
+
+#[test]
 fn holes_that_no_straight_cut_separates_are_refused_with_the_reason_and_no_output() {
-    // plane_holes_overlapping.step: two holes whose u ranges and v ranges both overlap.
-    let faces = read_step_faces(&file("plane_holes_overlapping.step")).unwrap();
+    // plane_holes_2x2.step: four holes 0.2 apart in a 2 × 2 pattern: no parallel lines
+    // separate them, and seen from any one two others overlap (no fan).
+    let faces = read_step_faces(&file("plane_holes_2x2.step")).unwrap();
     let d = DistributionSpec::Uniform {};
     let e = grid_face_blocks(&faces[0], (9, 9), &d, &d, &mut DirectLu::new(), "f")
         .expect_err("refused");
     assert!(
         e.to_string()
-            .contains("no straight (u, v) cut separates them"),
+            .contains("no straight (u, v) cuts separate them"),
         "{e}"
     );
     let dir = tempfile::tempdir().unwrap();
-    let step = file("plane_holes_overlapping.step");
+    let step = file("plane_holes_2x2.step");
     let o = ellipgrid(
         dir.path(),
         &[
@@ -505,7 +593,7 @@ fn holes_that_no_straight_cut_separates_are_refused_with_the_reason_and_no_outpu
     let t = text(&o);
     assert_eq!(o.status.code(), Some(2), "{t}");
     assert!(
-        t.contains("face 1: the holes overlap in both parameter directions"),
+        t.contains("face 1: the holes overlap in every direction"),
         "{t}"
     );
     assert!(!dir.path().join("h.x").exists());

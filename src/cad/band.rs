@@ -8,7 +8,8 @@
 //! cross-coordinate (j = 0 there), E4 on the other, E1 and E2 on the cuts. Blocks are made
 //! counterclockwise for a face whose normal is the surface's by [`super::split`].
 
-use super::holes::{crossings, locate, polygon, Cut, Layout, Node, Side};
+use super::hole_cuts::crossings;
+use super::holes::{locate, polygon, Cut, Layout, Node, Side};
 use super::trim::{FaceLoop, LoopPoint};
 
 /// The layout of a band bounded by `loops` (two, both winding), in (u, v) scaled by `scale`.

@@ -5,7 +5,9 @@
 //!   inside it (holes on periodic surfaces are moved by whole periods next to the outer loop).
 //! - Several holes: the face is cut into *strips* of one hole each by straight (u, v) lines
 //!   u = const (or v = const, whichever direction separates the holes by the widest gaps),
-//!   halfway between the holes; each line must cross the outer loop exactly twice.
+//!   halfway between the holes; each line must cross the outer loop exactly twice. Where
+//!   that fails, parallel oblique lines ([`super::hole_cuts`]), then a fan of cuts from a
+//!   central hole into one-hole sectors ([`super::fan`]).
 //! - Each strip has four corners: the ends of its cuts, and on the outer loop the convex
 //!   vertices turning most (by more than 20°), else the points farthest from the chord of
 //!   the stretch they split (a fillet's middle), else the middle of the longest stretch. A
@@ -16,6 +18,7 @@
 //!   strip's corners. Block k is bounded by the hole (its E3: j = 0 on the hole), the cuts k
 //!   and k + 1 (E2, E1, running from the hole outwards) and the strip's side k (E4).
 
+use super::hole_cuts::{candidates, crossings, Strips};
 use super::trim::{FaceLoop, LoopPoint, NS};
 
 /// A side of a block, from one of its corners to the next.
@@ -91,7 +94,7 @@ pub(super) fn polygon(lp: &FaceLoop, scale: [f64; 2]) -> Vec<(LoopPoint, [f64; 2
         .collect()
 }
 
-fn centroid(poly: &[(LoopPoint, [f64; 2])]) -> [f64; 2] {
+pub(super) fn centroid(poly: &[(LoopPoint, [f64; 2])]) -> [f64; 2] {
     let n = poly.len();
     let (mut a, mut cx, mut cy) = (0.0, 0.0, 0.0);
     for i in 0..n {
@@ -123,7 +126,7 @@ fn inside(poly: &[(LoopPoint, [f64; 2])], x: [f64; 2]) -> bool {
 }
 
 /// (u, v) of a loop point, scaled.
-fn at(lp: &mut FaceLoop, p: LoopPoint, scale: [f64; 2]) -> Result<[f64; 2], String> {
+pub(super) fn at(lp: &mut FaceLoop, p: LoopPoint, scale: [f64; 2]) -> Result<[f64; 2], String> {
     let (_, w) = lp.sample(p, p, &[0.0])?;
     Ok([w[0][0] * scale[0], w[0][1] * scale[1]])
 }
@@ -175,20 +178,6 @@ pub(super) fn locate(
             sigma,
         }
     })
-}
-
-/// The polygon segments where `f` changes sign, with whether it increases along the loop.
-pub(super) fn crossings(
-    poly: &[(LoopPoint, [f64; 2])],
-    f: impl Fn([f64; 2]) -> f64,
-) -> Vec<(usize, bool)> {
-    let n = poly.len();
-    (0..n)
-        .filter_map(|k| {
-            let (a, b) = (f(poly[k].1), f(poly[(k + 1) % n].1));
-            ((a < 0.0) != (b < 0.0)).then_some((k, b > a))
-        })
-        .collect()
 }
 
 /// Arclength position of a loop point from the loop's start.
@@ -279,6 +268,7 @@ pub(super) fn layout(
     ccw: &[bool],
     scale: [f64; 2],
     orientation: bool,
+    last: Fallback,
 ) -> Result<Layout, String> {
     let nh = loops.len() - 1;
     let polys: Vec<_> = loops.iter().map(|lp| polygon(lp, scale)).collect();
@@ -290,32 +280,50 @@ pub(super) fn layout(
             ));
         }
     }
-    let bbox = |h: usize| {
-        polys[h]
-            .iter()
-            .fold([[f64::INFINITY, f64::NEG_INFINITY]; 2], |mut b, (_, q)| {
-                for d in 0..2 {
-                    b[d] = [b[d][0].min(q[d]), b[d][1].max(q[d])];
-                }
-                b
-            })
-    };
-    // The cut direction: the one whose narrowest gap between consecutive holes is widest.
-    let mut best: Option<(f64, usize, Vec<usize>)> = None;
-    for d in 0..2 {
-        let mut order: Vec<usize> = (1..=nh).collect();
-        order.sort_by(|x, y| bbox(*x)[d][0].total_cmp(&bbox(*y)[d][0]));
-        let gap = order
-            .windows(2)
-            .map(|w| bbox(w[1])[d][0] - bbox(w[0])[d][1])
-            .fold(f64::INFINITY, f64::min);
-        if gap > 0.0 && best.as_ref().is_none_or(|b| gap > b.0) {
-            best = Some((gap, d, order));
+    if nh == 1 {
+        return strips(
+            loops,
+            ccw,
+            scale,
+            orientation,
+            &polys,
+            (vec![1], Vec::new()),
+        );
+    }
+    // The old rule's u = const or v = const lines first, then oblique ones: the first line
+    // set whose strips and rings can be made (faces split before keep their blocks).
+    let mut first = None;
+    for cand in candidates(&polys) {
+        match strips(loops, ccw, scale, orientation, &polys, cand) {
+            Ok(lay) => return Ok(lay),
+            Err(e) => {
+                first.get_or_insert(e);
+            }
         }
     }
-    let (_, d, order) = best.ok_or(
-        "the holes overlap in both parameter directions: no straight (u, v) cut separates them",
-    )?;
+    // Last, `last` (the caller's fan of cuts about a central hole: a flange's bore and its
+    // bolt circle).
+    if let Ok(lay) = last(loops, ccw, scale, orientation, &polys) {
+        return Ok(lay);
+    }
+    Err(first.unwrap_or_else(|| {
+        "the holes overlap in every direction: no straight (u, v) cuts separate them, nor a fan \
+         of cuts about a central hole"
+            .into()
+    }))
+}
+
+/// The layout of strips cut by `lines` between the holes `order` (a single hole: one strip
+/// with the outer loop's corners), an O-type ring of four blocks in each.
+fn strips(
+    loops: &mut [FaceLoop],
+    ccw: &[bool],
+    scale: [f64; 2],
+    orientation: bool,
+    polys: &[Vec<(LoopPoint, [f64; 2])>],
+    (order, lines): Strips,
+) -> Result<Layout, String> {
+    let nh = order.len();
     let outer_ccw = ccw[0];
     let mut cuts: Vec<Cut> = Vec::new();
     // Strip corners and sides, counterclockwise in (u, v).
@@ -343,9 +351,8 @@ pub(super) fn layout(
         // loop, run counterclockwise, crosses the line with the coordinate increasing (P+)
         // and decreasing (P−).
         let mut ends = Vec::new();
-        for w in order.windows(2) {
-            let c = 0.5 * (bbox(w[0])[d][1] + bbox(w[1])[d][0]);
-            let f = move |q: [f64; 2]| q[d] - c;
+        for (w, line) in order.windows(2).zip(&lines) {
+            let f = |q: [f64; 2]| line.f(q);
             let x = crossings(&polys[0], f);
             if x.len() != 2 {
                 return Err(format!(
@@ -420,10 +427,38 @@ pub(super) fn layout(
             strips.push(strip);
         }
     }
+    let strips = order.iter().copied().zip(strips).collect();
+    rings(loops, ccw, scale, orientation, polys, cuts, strips)
+}
+
+/// A layout tried where no line set works: loops, ccw, scale, orientation as
+/// [`layout`]'s, and the loops' polygons.
+pub(super) type Fallback = fn(
+    &mut [FaceLoop],
+    &[bool],
+    [f64; 2],
+    bool,
+    &[Vec<(LoopPoint, [f64; 2])>],
+) -> Result<Layout, String>;
+
+/// A part of a face holding one hole: the hole's loop, the part's four corners and its four
+/// sides (side k from corner k to corner k + 1), counterclockwise in (u, v).
+pub(super) type Part = (usize, ([Node; 4], [Side; 4]));
+
+/// The layout of `parts` (cut from the face by `cuts`): an O-type ring of four blocks
+/// around each part's hole, the cuts from the hole to the part's corners added to `cuts`.
+pub(super) fn rings(
+    loops: &mut [FaceLoop],
+    ccw: &[bool],
+    scale: [f64; 2],
+    orientation: bool,
+    polys: &[Vec<(LoopPoint, [f64; 2])>],
+    mut cuts: Vec<Cut>,
+    parts: Vec<Part>,
+) -> Result<Layout, String> {
     let mut blocks = Vec::new();
-    for (s, (corners, sides)) in strips.into_iter().enumerate() {
-        let h = order[s];
-        let ring = ring(loops, &polys, h, &corners, scale)?;
+    for (h, (corners, sides)) in parts {
+        let ring = ring(loops, polys, h, &corners, scale)?;
         let first = cuts.len();
         for k in 0..4 {
             cuts.push(Cut {
@@ -483,7 +518,16 @@ fn ring(
         let (a, b) = (dirs[k], dirs[(k + 1) % 4]);
         (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1])
     });
-    let turn: f64 = turns.map(|t| if t > 0.0 { t } else { f64::NAN }).sum();
+    // Each turn counterclockwise in (0, 2π): a corner may lie more than half a turn on (a
+    // part's side running round a corner of the outer loop past the hole), as long as the
+    // four go once around.
+    let turn: f64 = turns
+        .map(|t| match t {
+            t if t > 0.0 => t,
+            t if t < 0.0 => t + std::f64::consts::TAU,
+            _ => f64::NAN,
+        })
+        .sum();
     if (turn - std::f64::consts::TAU).abs().partial_cmp(&1e-6) != Some(std::cmp::Ordering::Less) {
         return Err(format!(
             "the corners of the blocks around hole (loop {}) do not surround it in order",

@@ -74,6 +74,8 @@ mod crease;
 mod cut_line;
 mod edge;
 mod face;
+mod fan;
+mod hole_cuts;
 mod holes;
 mod patch;
 mod pieces;

@@ -10,6 +10,7 @@ use super::band::band;
 use super::blocks::grid_layout;
 use super::chords::grid_face_chords;
 use super::face::{bounds, folds, gap_tolerance, grid_face_by, Corners, FaceGrid};
+use super::fan::fan;
 use super::holes::layout;
 use super::reentrant::grid_face_split;
 use super::trim::{CadSurface, FaceLoop};
@@ -35,8 +36,9 @@ use ellipgrid_geometry::TruckSurface;
 ///
 /// # Errors
 /// Those of [`super::grid_face`]; [`Error::Input`] at `place` with the reason if a face with
-/// holes cannot be split: holes that no straight u or v cut separates, a cut crossing the
-/// outer loop more than twice, a hole not star-shaped about its centroid, a band with holes.
+/// holes cannot be split: holes that neither parallel straight cuts nor a fan of cuts about a
+/// central hole separate, a cut crossing the outer loop more than twice, a hole not
+/// star-shaped about its centroid, a band with holes.
 pub fn grid_face_blocks(
     face: &StepFace,
     (ni, nj): (usize, usize),
@@ -156,7 +158,7 @@ fn holes(
     } else {
         let scale = outer_first(&mut loops);
         let ccw: Vec<bool> = loops.iter().map(|lp| lp.signed_area(scale) > 0.0).collect();
-        layout(&mut loops, &ccw, scale, face.orientation).map_err(err)?
+        layout(&mut loops, &ccw, scale, face.orientation, fan).map_err(err)?
     };
     grid_layout(
         face,
