@@ -260,7 +260,13 @@ fn a_cylinder_face_with_two_holes_across_its_seam_side_is_gridded_on_the_cylinde
 fn a_closed_cylinder_band_without_a_seam_edge_is_four_blocks_across_it() {
     // cylinder_band_seamless.step (make_band.py): the band r = 1, 0 ≤ z ≤ 2 bounded by its
     // two circles alone, as two loops; its j = 0 lines on one of the circles.
-    let faces = read_step_faces(&file("cylinder_band_seamless.step")).unwrap();
+    check_band("cylinder_band_seamless.step");
+}
+
+/// The seamless band r = 1, 0 ≤ z ≤ 2 of `name`: four blocks across it, on the cylinder,
+/// area 4π at second order.
+fn check_band(name: &str) {
+    let faces = read_step_faces(&file(name)).unwrap();
     assert_eq!(faces[0].route(), Route::Holes(1));
     let on_circle =
         |x: [f64; 3]| x[2].abs().min((x[2] - 2.0).abs()) + (x[0].hypot(x[1]) - 1.0).abs();
@@ -272,7 +278,7 @@ fn a_closed_cylinder_band_without_a_seam_edge_is_four_blocks_across_it() {
         area: 4.0 * PI,
         seam: &|_| false,
     };
-    check_face("cylinder_band_seamless.step", 1, &known);
+    check_face(name, 1, &known);
 }
 
 #[test]
@@ -280,19 +286,7 @@ fn a_closed_nurbs_band_is_periodic_across_the_rows_where_it_closes() {
     // nurbs_band_seamless.step (make_band.py): the same band on the same cylinder as a
     // rational B-spline whose first and last rows of control points are equal (no seam
     // edge, no period in truck): its loops cross that seam, which is found and made periodic.
-    let faces = read_step_faces(&file("nurbs_band_seamless.step")).unwrap();
-    assert_eq!(faces[0].route(), Route::Holes(1));
-    let on_circle =
-        |x: [f64; 3]| x[2].abs().min((x[2] - 2.0).abs()) + (x[0].hypot(x[1]) - 1.0).abs();
-    let known = Known {
-        surface: &|x| (x[0].hypot(x[1]) - 1.0).abs(),
-        normal: &|x| [x[0], x[1], 0.0],
-        holes: &[&on_circle],
-        hole_tol: 1e-11,
-        area: 4.0 * PI,
-        seam: &|_| false,
-    };
-    check_face("nurbs_band_seamless.step", 1, &known);
+    check_band("nurbs_band_seamless.step");
     // Through the CLI: four blocks written.
     let dir = tempfile::tempdir().unwrap();
     let step = file("nurbs_band_seamless.step");
