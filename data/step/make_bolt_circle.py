@@ -29,6 +29,8 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from make_notch import write_face_file  # noqa: E402
 
 
 def bolts(centre, radius, r, angles):
@@ -49,82 +51,46 @@ def main():
 def write(out, name, W, H, holes):
     """Writes OUT/NAME.step: the rectangle [0, W] x [0, H] in z = 0 (if W is None the disc
     of radius H about (H, H)) with circular HOLES (centre x, centre y, radius)."""
-    e = []
 
-    def add(text):
-        e.append(text)
-        return len(e)
+    def bounds(add, placement):
+        _, z, x, axis = placement
+        plane = add(f"PLANE('',#{axis})")
 
-    add("APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#2)")
-    add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')")
-    add("SHAPE_DEFINITION_REPRESENTATION(#4,#10)")
-    add("PRODUCT_DEFINITION_SHAPE('','',#5)")
-    add("PRODUCT_DEFINITION('design','',#6,#9)")
-    add("PRODUCT_DEFINITION_FORMATION('','',#7)")
-    add(f"PRODUCT('{name}','{name}','',(#8))")
-    add("PRODUCT_CONTEXT('',#2,'mechanical')")
-    add("PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design')")
-    rep = add(None)  # #10, filled in below
-    origin = add("CARTESIAN_POINT('',(0.,0.,0.))")
-    z = add("DIRECTION('',(0.,0.,1.))")
-    x = add("DIRECTION('',(1.,0.,0.))")
-    axis = add(f"AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})")
-    plane = add(f"PLANE('',#{axis})")
+        def point(px, py):
+            return add(f"CARTESIAN_POINT('',({px!r},{py!r},0.))")
 
-    def point(px, py):
-        return add(f"CARTESIAN_POINT('',({px!r},{py!r},0.))")
+        if W is None:
+            # A disc of radius H about (H, H): one closed CIRCLE edge, counterclockwise.
+            v = add(f"VERTEX_POINT('',#{point(2 * H, H)})")
+            place = add(f"AXIS2_PLACEMENT_3D('',#{point(H, H)},#{z},#{x})")
+            circle = add(f"CIRCLE('',#{place},{H!r})")
+            edge = add(f"EDGE_CURVE('',#{v},#{v},#{circle},.T.)")
+            oriented = [add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)")]
+        else:
+            pts = [(0.0, 0.0), (W, 0.0), (W, H), (0.0, H)]
+            verts = [add(f"VERTEX_POINT('',#{point(*p)})") for p in pts]
+            oriented = []
+            for k in range(4):
+                (ax, ay), (bx, by) = pts[k], pts[(k + 1) % 4]
+                length = math.hypot(bx - ax, by - ay)
+                d = add(f"DIRECTION('',({(bx - ax) / length!r},{(by - ay) / length!r},0.))")
+                v = add(f"VECTOR('',#{d},1.)")
+                c = add(f"LINE('',#{point(ax, ay)},#{v})")
+                edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % 4]},#{c},.T.)")
+                oriented.append(add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)"))
+        loop = add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oriented) + "))")
+        ids = [add(f"FACE_OUTER_BOUND('',#{loop},.T.)")]
+        for (cx, cy, RH) in holes:
+            v = add(f"VERTEX_POINT('',#{point(cx + RH, cy)})")
+            place = add(f"AXIS2_PLACEMENT_3D('',#{point(cx, cy)},#{z},#{x})")
+            circle = add(f"CIRCLE('',#{place},{RH!r})")
+            edge = add(f"EDGE_CURVE('',#{v},#{v},#{circle},.T.)")
+            o = add(f"ORIENTED_EDGE('',*,*,#{edge},.F.)")
+            hole = add(f"EDGE_LOOP('',(#{o}))")
+            ids.append(add(f"FACE_BOUND('',#{hole},.T.)"))
+        return ids, plane
 
-    if W is None:
-        # A disc of radius H about (H, H): one closed CIRCLE edge, counterclockwise.
-        v = add(f"VERTEX_POINT('',#{point(2 * H, H)})")
-        place = add(f"AXIS2_PLACEMENT_3D('',#{point(H, H)},#{z},#{x})")
-        circle = add(f"CIRCLE('',#{place},{H!r})")
-        edge = add(f"EDGE_CURVE('',#{v},#{v},#{circle},.T.)")
-        oriented = [add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)")]
-    else:
-        pts = [(0.0, 0.0), (W, 0.0), (W, H), (0.0, H)]
-        verts = [add(f"VERTEX_POINT('',#{point(*p)})") for p in pts]
-        oriented = []
-        for k in range(4):
-            (ax, ay), (bx, by) = pts[k], pts[(k + 1) % 4]
-            length = math.hypot(bx - ax, by - ay)
-            d = add(f"DIRECTION('',({(bx - ax) / length!r},{(by - ay) / length!r},0.))")
-            v = add(f"VECTOR('',#{d},1.)")
-            c = add(f"LINE('',#{point(ax, ay)},#{v})")
-            edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % 4]},#{c},.T.)")
-            oriented.append(add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)"))
-    loop = add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oriented) + "))")
-    bounds = [add(f"FACE_OUTER_BOUND('',#{loop},.T.)")]
-    for (cx, cy, RH) in holes:
-        v = add(f"VERTEX_POINT('',#{point(cx + RH, cy)})")
-        place = add(f"AXIS2_PLACEMENT_3D('',#{point(cx, cy)},#{z},#{x})")
-        circle = add(f"CIRCLE('',#{place},{RH!r})")
-        edge = add(f"EDGE_CURVE('',#{v},#{v},#{circle},.T.)")
-        o = add(f"ORIENTED_EDGE('',*,*,#{edge},.F.)")
-        hole = add(f"EDGE_LOOP('',(#{o}))")
-        bounds.append(add(f"FACE_BOUND('',#{hole},.T.)"))
-    face = add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bounds) + f"),#{plane},.T.)")
-    shell = add(f"OPEN_SHELL('',(#{face}))")
-    model = add(f"SHELL_BASED_SURFACE_MODEL('',(#{shell}))")
-    unc = add("UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#{},"
-              "'distance_accuracy_value','confusion accuracy')".format(len(e) + 3))
-    ctx = add("( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT("
-              f"(#{unc})) GLOBAL_UNIT_ASSIGNED_CONTEXT((#{len(e) + 2},#{len(e) + 3},"
-              f"#{len(e) + 4})) REPRESENTATION_CONTEXT('Context #1','3D Context with UNIT "
-              "and UNCERTAINTY') )")
-    add("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) )")
-    add("( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) )")
-    add("( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )")
-    e[rep - 1] = f"MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#{axis},#{model}),#{ctx})"
-    with open(os.path.join(out, f"{name}.step"), "w") as f:
-        f.write("ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('ellipgrid test face'),'2;1');\n"
-                f"FILE_NAME('{name}','2026-11-27T23:40:00',('ellipgrid'),(''),"
-                "'make_bolt_circle.py','','');\n"
-                "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\n"
-                "DATA;\n")
-        for k, t in enumerate(e, 1):
-            f.write(f"#{k} = {t};\n")
-        f.write("ENDSEC;\nEND-ISO-10303-21;\n")
+    write_face_file(name, out, "make_bolt_circle.py", "2026-11-27T23:40:00", bounds)
 
 
 if __name__ == "__main__":

@@ -24,6 +24,44 @@ def write_polygon_face(name, pts, out, script, curve=None, coord="{:.2f}",
     curve's number (default: a LINE); COORD formats the points' coordinates. SURFACE(add,
     axis) adds the face's surface (default: the PLANE z = 0 of the placement `axis`) and
     LIFT(px, py) places a loop point in 3D (default: (px, py, 0))."""
+
+    def line(add, k, a, b):
+        (ax, ay), (bx, by) = a, b
+        length = ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
+        p = add(f"CARTESIAN_POINT('',({coord.format(ax)},{coord.format(ay)},0.))")
+        d = add(f"DIRECTION('',({(bx - ax) / length!r},{(by - ay) / length!r},0.))")
+        v = add(f"VECTOR('',#{d},1.)")
+        return add(f"LINE('',#{p},#{v})")
+
+    def bounds(add, placement):
+        axis = placement[3]
+        plane = surface(add, axis) if surface else add(f"PLANE('',#{axis})")
+        verts = []
+        for (px, py) in pts:
+            if lift:
+                q = ",".join(repr(c) for c in lift(px, py))
+                p = add(f"CARTESIAN_POINT('',({q}))")
+            else:
+                p = add(f"CARTESIAN_POINT('',({coord.format(px)},{coord.format(py)},0.))")
+            verts.append(add(f"VERTEX_POINT('',#{p})"))
+        oriented = []
+        n = len(pts)
+        for k in range(n):
+            c = (curve or line)(add, k, pts[k], pts[(k + 1) % n])
+            edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % n]},#{c},.T.)")
+            oriented.append(add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)"))
+        loop = add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oriented) + "))")
+        return [add(f"FACE_OUTER_BOUND('',#{loop},.T.)")], plane
+
+    write_face_file(name, out, script, stamp, bounds)
+
+
+def write_face_file(name, out, script, stamp, bounds):
+    """Writes OUT/NAME.step: one face in a shell-based surface model of an AP214 product
+    (millimetres), SCRIPT and STAMP in FILE_NAME. BOUNDS(add, placement) adds the face's
+    surface and bounds through add(text) -> entity number (placement: the ids of the origin,
+    z and x directions and the origin's AXIS2_PLACEMENT_3D) and returns (bound ids, surface
+    id)."""
     e = []
 
     def add(text):
@@ -44,34 +82,9 @@ def write_polygon_face(name, pts, out, script, curve=None, coord="{:.2f}",
     z = add("DIRECTION('',(0.,0.,1.))")
     x = add("DIRECTION('',(1.,0.,0.))")
     axis = add(f"AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})")
-    plane = surface(add, axis) if surface else add(f"PLANE('',#{axis})")
-    verts = []
-    for (px, py) in pts:
-        if lift:
-            q = ",".join(repr(c) for c in lift(px, py))
-            p = add(f"CARTESIAN_POINT('',({q}))")
-        else:
-            p = add(f"CARTESIAN_POINT('',({coord.format(px)},{coord.format(py)},0.))")
-        verts.append(add(f"VERTEX_POINT('',#{p})"))
-    oriented = []
-
-    def line(add, k, a, b):
-        (ax, ay), (bx, by) = a, b
-        length = ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
-        p = add(f"CARTESIAN_POINT('',({coord.format(ax)},{coord.format(ay)},0.))")
-        d = add(f"DIRECTION('',({(bx - ax) / length!r},{(by - ay) / length!r},0.))")
-        v = add(f"VECTOR('',#{d},1.)")
-        return add(f"LINE('',#{p},#{v})")
-
-    curve = curve or line
-    n = len(pts)
-    for k in range(n):
-        c = curve(add, k, pts[k], pts[(k + 1) % n])
-        edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % n]},#{c},.T.)")
-        oriented.append(add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)"))
-    loop = add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oriented) + "))")
-    bound = add(f"FACE_OUTER_BOUND('',#{loop},.T.)")
-    face = add(f"ADVANCED_FACE('',(#{bound}),#{plane},.T.)")
+    bound_ids, surface = bounds(add, (origin, z, x, axis))
+    face = add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bound_ids)
+               + f"),#{surface},.T.)")
     shell = add(f"OPEN_SHELL('',(#{face}))")
     model = add(f"SHELL_BASED_SURFACE_MODEL('',(#{shell}))")
     unc = add("UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#{},"
