@@ -26,8 +26,9 @@ use std::time::{Duration, Instant};
 
 #[derive(Clone, Debug)]
 enum Outcome {
-    Ok,
-    Folded,
+    /// Gridded fold-free; the largest defect of the file's boundary healed (0: none).
+    Ok(f64),
+    Folded(f64),
     Refused(String),
     Failed(String),
 }
@@ -68,10 +69,11 @@ fn grid_file(path: PathBuf, n: usize, linear: &str) -> Result<Faces, String> {
                     match grid_face_blocks(f, (n, n), &d, &d, solver.as_mut(), "") {
                         Ok(gs) => {
                             let folded = gs.iter().any(|g| g.quality.is_folded());
+                            let healed = gs.iter().map(|g| g.healed).fold(0.0, f64::max);
                             if folded {
-                                Outcome::Folded
+                                Outcome::Folded(healed)
                             } else {
-                                Outcome::Ok
+                                Outcome::Ok(healed)
                             }
                         }
                         Err(e) => Outcome::Failed(e.to_string()),
@@ -125,6 +127,8 @@ fn main() {
     let mut reasons: BTreeMap<String, usize> = BTreeMap::new();
     // Faces with holes (several loops): how many, how many gridded fold-free.
     let mut with_holes = [0usize; 2];
+    // Faces whose boundary was healed beyond the file's tolerance: gridded, fold-free.
+    let mut healed = [0usize; 2];
     let (mut all, mut ok_all, mut slowest) = (0, 0, (0.0, String::new()));
     println!("{n} × {n} nodes per face, time limit {timeout} s per file\n");
     println!(
@@ -159,8 +163,8 @@ fn main() {
             Ok(Ok(f)) => f,
         };
         let count = |f: fn(&Outcome) -> bool| faces.iter().filter(|x| f(&x.2)).count();
-        let ok = count(|o| matches!(o, Outcome::Ok));
-        let folded = count(|o| matches!(o, Outcome::Folded));
+        let ok = count(|o| matches!(o, Outcome::Ok(_)));
+        let folded = count(|o| matches!(o, Outcome::Folded(_)));
         let refused = count(|o| matches!(o, Outcome::Refused(_)));
         let failed = count(|o| matches!(o, Outcome::Failed(_)));
         println!(
@@ -175,16 +179,25 @@ fn main() {
         for (index, ty, o, holes) in &faces {
             if *holes {
                 with_holes[0] += 1;
-                with_holes[1] += usize::from(matches!(o, Outcome::Ok));
+                with_holes[1] += usize::from(matches!(o, Outcome::Ok(_)));
             }
             let t = by_type.entry(ty).or_default();
             t[0] += 1;
-            if matches!(o, Outcome::Ok) {
+            if matches!(o, Outcome::Ok(_)) {
                 t[1] += 1;
             }
+            if let Outcome::Ok(h) | Outcome::Folded(h) = o {
+                if *h > 0.0 {
+                    healed[0] += 1;
+                    healed[1] += usize::from(matches!(o, Outcome::Ok(_)));
+                    if show.as_deref() == Some("healed") {
+                        println!("    {name} face {index}: healed {h:.3e}");
+                    }
+                }
+            }
             let key = match o {
-                Outcome::Ok => continue,
-                Outcome::Folded => "folded".to_string(),
+                Outcome::Ok(_) => continue,
+                Outcome::Folded(_) => "folded".to_string(),
                 Outcome::Refused(m) => format!("refused: {}", class(m)),
                 Outcome::Failed(m) => format!("failed: {}", class(m)),
             };
@@ -207,6 +220,11 @@ fn main() {
     println!(
         "faces with holes (several loops): {} of {} gridded fold-free",
         with_holes[1], with_holes[0]
+    );
+    println!(
+        "faces healed (edges missing each other or the surface beyond the file's tolerance): \
+         {} gridded, {} fold-free",
+        healed[0], healed[1]
     );
     println!("\nby CAD system:");
     for (s, c) in &by_system {

@@ -566,16 +566,114 @@ fn edges_within_three_uncertainties_of_the_file_are_on_the_face() {
             .replace("LENGTH_MEASURE(5.E-03)", "LENGTH_MEASURE(1.E-03)"),
     )
     .unwrap();
-    let o = step_grid_face(d.path(), tight.to_str().unwrap(), "1", "t.x");
+    // 2e-3 of the loop's size is within what is healed by default (`--heal`, 0.5 %): the
+    // face is gridded and says so; with `--heal 0` it is refused
+    let tight = tight.to_str().unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "step", "grid", tight, "--face", "1", "--heal", "0", "-o", "t.x",
+        ],
+    );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(
-        text(&o).contains("from the face's surface (tolerance 5.000e-3)"),
+        text(&o).contains("from the face's surface (tolerance 5.000e-3, healed up to 5.000e-3)"),
         "{}",
         text(&o)
     );
     assert!(!d.path().join("t.x").exists());
+    let o = step_grid_face(d.path(), tight, "1", "healed.x");
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o)
+            .contains("healed: the file's edges miss each other or the surface by up to 1.000e-2"),
+        "{}",
+        text(&o)
+    );
     let o = step_grid_face(d.path(), path.to_str().unwrap(), "1", "ok.x");
     assert!(o.status.success(), "{}", text(&o));
+    assert!(!text(&o).contains("healed"), "{}", text(&o));
+}
+
+#[test]
+fn edges_whose_ends_miss_their_vertices_are_healed_onto_a_closed_loop() {
+    // plane_notch_sloppy.step: the edge from (4, 0) to (4, 3) lies on x = 4.01, so its ends
+    // miss those of its neighbours by 1e-2 (2e-3 of the loop's size). Healed, the edges meet
+    // at the means of their ends, (4.005, 0) and (4.005, 3), each edge shifted linearly along
+    // itself: every boundary node lies on the polygon through those points, the corner is
+    // one of them, and the gap is reported. With `heal` 0 the face is refused, naming the
+    // edges; through the CLI likewise (`--heal 0`, exit 2, no file).
+    let name = "plane_notch_sloppy.step";
+    let n = 33;
+    let g = grid(name, 1, n);
+    assert!((g.healed - 1e-2).abs() < 1e-12, "{}", g.healed);
+    let grid = &g.result.grid;
+    assert!(unfolded(grid));
+    let poly = [
+        [0.0, 0.0],
+        [4.005, 0.0],
+        [4.005, 3.0],
+        [2.0, 0.5],
+        [0.0, 3.0],
+    ];
+    let on_polygon = |p: [f64; 3]| {
+        (0..5).any(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % 5]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let t = ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy);
+            let (qx, qy) = (a[0] + t * dx, a[1] + t * dy);
+            (-1e-12..=1.0 + 1e-12).contains(&t) && ((p[0] - qx).hypot(p[1] - qy)) < 1e-12
+        })
+    };
+    let mut corner = false;
+    for j in 0..n {
+        for i in 0..n {
+            let p = node(grid, i + n * j);
+            assert!(p[2].abs() < 1e-12);
+            if i == 0 || j == 0 || i == n - 1 || j == n - 1 {
+                assert!(
+                    on_polygon(p),
+                    "boundary node ({i}, {j}) {p:?} off the healed loop"
+                );
+                corner |= (p[0] - 4.005).abs() < 1e-12 && p[1].abs() < 1e-12;
+            }
+        }
+    }
+    assert!(corner, "no node at the healed vertex (4.005, 0)");
+    let mut faces = read_step_faces(&file(name)).unwrap();
+    faces[0].heal = 0.0;
+    let d = DistributionSpec::Uniform {};
+    let e = grid_face(&faces[0], (n, n), &d, &d, &mut DirectLu::new(), name).unwrap_err();
+    assert!(
+        e.to_string().contains(
+            "boundary edges 1 and 2 do not meet (gap 1.000e-2, 0.20 % of the loop's size"
+        ),
+        "{e}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = file(name);
+    let step = path.to_str().unwrap();
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step", "grid", step, "--face", "1", "--heal", "0", "-o", "s.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("do not meet"), "{}", text(&o));
+    assert!(!dir.path().join("s.x").exists());
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step", "grid", step, "--face", "1", "--heal", "nan", "-o", "s.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("--heal"), "{}", text(&o));
+    let o = step_grid_face(dir.path(), step, "1", "s.x");
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("healed"), "{}", text(&o));
+    assert!(dir.path().join("s.x").exists());
 }
 
 #[test]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes two test files derived from others of this folder.
+"""Writes test files derived from others of this folder.
 
 cone_patch_vendor_forms.step: the face of cone_patch.step with the entity forms
 that CAD systems write and truck-stepio 0.3 alone loses, so that the same face must come out:
@@ -18,6 +18,11 @@ plane_notch_tolerant.step: plane_notch.step with its vertex (4, 3, 0) moved to (
 so that its two edges there leave the plane z = 0 by up to 1e-2 (2e-3 of the loop's size 5,
 above the relative tolerance 1e-3), and the file's distance uncertainty 5e-3 instead of 1e-7
 (the gap is then within 3 uncertainties, as CATIA's ventilator has them).
+
+plane_notch_sloppy.step: plane_notch.step with its edge from (4, 0) to (4, 3) on a straight
+B-spline through x = 4.01: that edge's ends miss its vertices, and the ends of the edges before and
+after it, by 1e-2 (2e-3 of the loop's size 5, a hundred thousand times the file's uncertainty
+1e-7), as TraceParts writes a circle of radius 1.49 between vertices at radius 1.50.
 
 cylinder_patch_nurbs_vendor_order.step: cylinder_patch_nurbs.step with the partial entities
 of its complex instances in the order Spatial's writer (TraceParts) uses, `_` before letters
@@ -67,6 +72,17 @@ def main():
     sub("#20 = CARTESIAN_POINT('',(4.00,3.00,0.));", "#20 = CARTESIAN_POINT('',(4.00,3.00,0.01));")
     sub("LENGTH_MEASURE(1.E-07)", "LENGTH_MEASURE(5.E-03)")
     (out / "plane_notch_tolerant.step").write_text(text)
+
+    text = (here / "plane_notch.step").read_text()
+    sub("#36 = EDGE_CURVE('',#19,#21,#35,.T.);", "#36 = EDGE_CURVE('',#19,#21,#66,.T.);")
+    extra = [
+        "#66 = B_SPLINE_CURVE_WITH_KNOTS('',1,(#67,#68),.POLYLINE_FORM.,.F.,.F.,(2,2),(0.,3.),"
+        ".UNSPECIFIED.);",
+        "#67 = CARTESIAN_POINT('',(4.01,0.00,0.));",
+        "#68 = CARTESIAN_POINT('',(4.01,3.00,0.));",
+    ]
+    sub("ENDSEC;\nEND-ISO-10303-21;", "\n".join(extra) + "\nENDSEC;\nEND-ISO-10303-21;")
+    (out / "plane_notch_sloppy.step").write_text(text)
 
     text = (here / "cylinder_patch_nurbs.step").read_text()
     for old, new in [

@@ -39,6 +39,7 @@ pub(super) fn grid_layout(
     let scale = loops[0].metric_scale();
     let periods = loops[0].periods;
     let gap = loops.iter().map(|lp| lp.gap).fold(0.0, f64::max);
+    let healed = loops.iter().map(|lp| lp.healed).fold(0.0, f64::max);
     let node = |loops: &mut [FaceLoop], n: Node| -> Result<(Vec3, [f64; 2])> {
         let (x, w) = loops[n.l].sample(n.p, n.p, &[0.0]).map_err(err)?;
         Ok((x[0], w[0]))
@@ -122,7 +123,12 @@ pub(super) fn grid_layout(
             solver,
             &at,
         )?;
-        out.push(FaceGrid::new(r.result, Vec::new(), gap, r.uv_picard));
+        out.push(FaceGrid::new(
+            r.result,
+            Vec::new(),
+            (gap, healed),
+            r.uv_picard,
+        ));
     }
     Ok(out)
 }

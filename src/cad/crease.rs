@@ -378,7 +378,7 @@ pub fn grid_creased(
     let grids = results
         .into_iter()
         .map(|r| {
-            let mut g = FaceGrid::new(r, Vec::new(), 0.0, None);
+            let mut g = FaceGrid::new(r, Vec::new(), (0.0, 0.0), None);
             g.patch_cuts.clone_from(&creases);
             g
         })

@@ -38,9 +38,10 @@ pub const GAP_TOL: f64 = 1e-3;
 /// their faces at an uncertainty of 5e-3.
 pub const UNCERTAINTY_FACTOR: f64 = 3.0;
 
-/// The (relative, absolute) gap tolerances of a face's boundary.
-pub(super) fn gap_tolerance(face: &StepFace) -> (f64, f64) {
-    (GAP_TOL, UNCERTAINTY_FACTOR * face.uncertainty)
+/// The (relative, absolute) gap tolerances of a face's boundary, and the relative limit of
+/// what is healed beyond them ([`StepFace::heal`]).
+pub(super) fn gap_tolerance(face: &StepFace) -> (f64, f64, f64) {
+    (GAP_TOL, UNCERTAINTY_FACTOR * face.uncertainty, face.heal)
 }
 
 /// A gridded CAD face.
@@ -54,6 +55,9 @@ pub struct FaceGrid {
     pub corner_angles: Vec<f64>,
     /// Largest distance between a boundary point and the surface (the file's gaps).
     pub gap: f64,
+    /// Largest defect of the file's boundary healed beyond its tolerance (edges whose ends
+    /// miss each other, points off the surface; [`StepFace::heal`]), 0 if none.
+    pub healed: f64,
     /// The Section 2 solve of the (u, v) grid (none for an untrimmed patch).
     pub uv_picard: Option<PicardInfo>,
     /// The quality report of `result.grid` ([`quality::quality_surface`]), computed once
@@ -69,7 +73,7 @@ impl FaceGrid {
     pub(super) fn new(
         result: SurfaceResult,
         corner_angles: Vec<f64>,
-        gap: f64,
+        (gap, healed): (f64, f64),
         uv_picard: Option<PicardInfo>,
     ) -> Self {
         let quality = quality::quality_surface(&result.grid);
@@ -77,6 +81,7 @@ impl FaceGrid {
             result,
             corner_angles,
             gap,
+            healed,
             uv_picard,
             quality,
             patch_cuts: Vec::new(),
@@ -200,7 +205,7 @@ pub fn grid_face_by(
                 .as_ref()
                 .expect("a patch has a B-spline surface");
             let result = super::grid_patch(s, (ni, nj), dist_i, dist_j, solver, place)?;
-            Ok(FaceGrid::new(result, Vec::new(), 0.0, None))
+            Ok(FaceGrid::new(result, Vec::new(), (0.0, 0.0), None))
         }
         Route::Trimmed(_) => trimmed(face, (ni, nj), [dist_i, dist_j], solver, place, corners),
     }
@@ -419,7 +424,7 @@ fn attempt(
     Ok(FaceGrid::new(
         r.result,
         b.angles.to_vec(),
-        b.gap,
+        (b.gap, b.healed),
         r.uv_picard,
     ))
 }
@@ -432,6 +437,7 @@ struct FaceBoundary {
     scale: [f64; 2],
     angles: [f64; 4],
     gap: f64,
+    healed: f64,
 }
 
 /// Step 1: the loop, its corners q0..q3 in the order that makes the grid's normal the face's
@@ -564,6 +570,7 @@ fn boundary(
         scale,
         angles,
         gap: lp.gap,
+        healed: lp.healed,
     })
 }
 

@@ -99,6 +99,7 @@ pub use face::{grid_face, grid_face_by, Corners, FaceGrid, BALANCED, COLLAPSED};
 pub use patch::grid_patch;
 pub use reentrant::{grid_face_split, MAX_BLOCKS};
 pub use split::grid_face_blocks;
+pub use trim::HEAL;
 pub use unread::Unread;
 pub use write::write_step_surface;
 
@@ -165,6 +166,10 @@ pub struct StepFace {
     /// The file's distance uncertainty (the largest `distance_accuracy_value` of its
     /// `UNCERTAINTY_MEASURE_WITH_UNIT`s, in its length unit), 0 if it gives none.
     pub uncertainty: f64,
+    /// Largest defect of the boundary healed, relative to the loop's size: edges whose ends
+    /// miss each other, or points off the surface, beyond the tolerance ([`HEAL`] by
+    /// default; 0 refuses any).
+    pub heal: f64,
 }
 
 impl StepFace {
@@ -393,6 +398,32 @@ fn vertex_tolerance(shell: &Shell) -> f64 {
     }
 }
 
+/// The diagonal of the box of the vertices of loop `l` (0 if one is missing).
+fn loop_size(shell: &Shell, l: &[truck_topology::compress::CompressedEdgeIndex]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for ei in l {
+        let Some(edge) = shell.edges.get(ei.index) else {
+            return 0.0;
+        };
+        for k in [edge.vertices.0, edge.vertices.1] {
+            let Some(p) = shell.vertices.get(k) else {
+                return 0.0;
+            };
+            for (c, v) in [p.x, p.y, p.z].into_iter().enumerate() {
+                lo[c] = lo[c].min(v);
+                hi[c] = hi[c].max(v);
+            }
+        }
+    }
+    let d = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+    if d.is_finite() {
+        d
+    } else {
+        0.0
+    }
+}
+
 fn step_face(index: usize, shell: &Shell, face: &CompressedFace<StepSurface>) -> StepFace {
     let surface = match &face.surface {
         StepSurface::BSplineSurface(s) => Some(BSplineSurf::from_truck_bspline(s)),
@@ -414,6 +445,8 @@ fn step_face(index: usize, shell: &Shell, face: &CompressedFace<StepSurface>) ->
         .boundaries
         .iter()
         .map(|l| {
+            // a vertex off its curve within what the loop heals ([`HEAL`]) is the loop's gap
+            let tol = tol.max(HEAL * loop_size(shell, l));
             l.iter()
                 .enumerate()
                 .map(|(n, ei)| {
@@ -446,6 +479,7 @@ fn step_face(index: usize, shell: &Shell, face: &CompressedFace<StepSurface>) ->
         loops,
         orientation: face.orientation,
         uncertainty: 0.0,
+        heal: HEAL,
     }
 }
 
@@ -474,6 +508,7 @@ fn bare_face(index: usize, surface: StepSurface) -> StepFace {
         loops: Ok(Vec::new()),
         orientation: true,
         uncertainty: 0.0,
+        heal: HEAL,
     }
 }
 

@@ -9,6 +9,7 @@ pub(super) use cusp::{CORNER_LIKE, CUSP, TIP};
 use ellipgrid_geometry::{
     project_within, ArclengthMap, Curve, Surface, TruckCurve, TruckSurface, Vec3,
 };
+pub use heal::HEAL;
 use pole::singular;
 use truck_geometry::prelude::{ParametricSurface, Point3, SearchNearestParameter, D2};
 use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
@@ -16,7 +17,9 @@ use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 mod balance;
 mod corners;
 mod cusp;
+mod heal;
 mod pole;
+mod sample;
 
 /// A CAD surface in its own parameters.
 pub(super) type CadSurface = TruckSurface<StepSurface>;
@@ -37,6 +40,20 @@ pub(super) struct LoopCurve {
     map: ArclengthMap,
     /// (u, v) at the normalized arclengths k / NS, k = 0..=NS.
     pub uv: Vec<[f64; 2]>,
+    /// Moves of its start and end where the file's edges do not meet ([`heal`]).
+    shift: [Vec3; 2],
+}
+
+impl LoopCurve {
+    /// The point at normalized arclength `sigma`, healed ([`heal`]).
+    fn point(&self, sigma: f64) -> Vec3 {
+        let x = self.curve.point(self.map.param_at(sigma));
+        if self.shift == [Vec3::zeros(); 2] {
+            x // bit for bit as read (no -0.0 turned into 0.0)
+        } else {
+            x + heal::blend(&self.shift, sigma)
+        }
+    }
 }
 
 /// A point of the loop: edge `edge` at normalized arclength `sigma` of that edge.
@@ -58,6 +75,11 @@ pub(super) struct FaceLoop<'a> {
     pub gap: f64,
     /// Distance beyond which a boundary point is "not on the surface".
     tol: f64,
+    /// Distance beyond which the file's defects are not healed ([`HEAL`] of the loop's size).
+    heal: f64,
+    /// Largest defect beyond `tol` healed: a gap between edges or a distance from the
+    /// surface (0: none).
+    pub healed: f64,
     /// Mean |x_u|, |x_v| over the samples ([`FaceLoop::metric_scale`]).
     scale: [f64; 2],
     /// (u, v) at the loop's end less at its start, if the loop winds around the surface.
@@ -96,7 +118,7 @@ impl<'a> FaceLoop<'a> {
         surface: &'a CadSurface,
         edges: &[LoopEdge],
         bounds: [[f64; 2]; 2],
-        (tol_rel, tol_abs): (f64, f64),
+        (tol_rel, tol_abs, heal_rel): (f64, f64, f64),
         winding: bool,
     ) -> Result<FaceLoop<'a>, String> {
         if edges.is_empty() {
@@ -122,7 +144,7 @@ impl<'a> FaceLoop<'a> {
         if curves.is_empty() {
             return Err("the boundary loop has no length".into());
         }
-        let pts: Vec<Vec<Vec3>> = curves
+        let mut pts: Vec<Vec<Vec3>> = curves
             .iter()
             .map(|(c, m)| {
                 (0..=NS)
@@ -142,21 +164,39 @@ impl<'a> FaceLoop<'a> {
             edges: Vec::new(),
             gap: 0.0,
             tol: (tol_rel * size).max(tol_abs),
+            heal: (heal_rel * size).max(tol_rel * size).max(tol_abs),
+            healed: 0.0,
             scale: [1.0; 2],
             winding: None,
             pole: None,
             cusp: None,
         };
         let n = curves.len();
-        for k in 0..n {
-            let next = &pts[(k + 1) % n][0];
-            let miss = (pts[k][NS] - next).norm();
-            if miss > lp.tol {
+        let ends: Vec<(Vec3, Vec3)> = pts.iter().map(|p| (p[0], p[NS])).collect();
+        let mut shifts = match heal::end_shifts(&ends, lp.heal) {
+            Ok((shifts, gap)) if gap > lp.tol => {
+                lp.healed = gap;
+                shifts
+            }
+            Ok(_) => vec![[Vec3::zeros(); 2]; n],
+            Err((k, miss)) => {
                 return Err(format!(
-                    "boundary edges {} and {} do not meet (gap {miss:.3e})",
+                    "boundary edges {} and {} do not meet (gap {miss:.3e}, {:.2} % of the loop's \
+                     size; healed up to {:.2} %)",
                     numbers[k],
-                    numbers[(k + 1) % n]
-                ));
+                    numbers[(k + 1) % n],
+                    100.0 * miss / size,
+                    100.0 * heal_rel
+                ))
+            }
+        };
+        for (p, shift) in pts
+            .iter_mut()
+            .zip(&shifts)
+            .filter(|(_, s)| lp.healed > 0.0 && **s != [Vec3::zeros(); 2])
+        {
+            for (i, x) in p.iter_mut().enumerate() {
+                *x += heal::blend(shift, i as f64 / NS as f64);
             }
         }
         let mut uv = lp.project_loop(&pts, &numbers, 0)?;
@@ -191,6 +231,7 @@ impl<'a> FaceLoop<'a> {
                 curve,
                 map,
                 uv,
+                shift: std::mem::take(&mut shifts[lp.edges.len()]),
             });
         }
         lp.scale = lp.mean_speeds();
@@ -312,11 +353,15 @@ impl<'a> FaceLoop<'a> {
             format!("boundary edge {number}: the projection onto the surface did not converge")
         })?;
         let gap = off(uv);
-        if gap.is_nan() || gap > self.tol {
+        if gap.is_nan() || gap > self.heal {
             return Err(format!(
-                "boundary edge {number} lies {gap:.3e} from the face's surface (tolerance {:.3e})",
-                self.tol
+                "boundary edge {number} lies {gap:.3e} from the face's surface (tolerance {:.3e}, \
+                 healed up to {:.3e})",
+                self.tol, self.heal
             ));
+        }
+        if gap > self.tol {
+            self.healed = self.healed.max(gap);
         }
         self.gap = self.gap.max(gap);
         Ok(uv)
@@ -426,7 +471,7 @@ impl<'a> FaceLoop<'a> {
         let s = self.scale;
         let h = 1.0 / (8 * NS) as f64;
         let near = |sigma: f64| {
-            let x = e.curve.point(e.map.param_at(sigma));
+            let x = e.point(sigma);
             let pos = sigma * NS as f64;
             let i = (pos.floor() as usize).min(NS - 1);
             let w = pos - i as f64;
@@ -454,104 +499,5 @@ impl<'a> FaceLoop<'a> {
         } else {
             cross > tiny
         }
-    }
-
-    /// The pieces (edge, σ from, σ to) of the loop from `a` forwards to `b`.
-    fn chain(&self, a: LoopPoint, b: LoopPoint) -> Vec<(usize, f64, f64)> {
-        let n = self.len();
-        if a.edge == b.edge && a.sigma < b.sigma {
-            return vec![(a.edge, a.sigma, b.sigma)];
-        }
-        let mut out = Vec::new();
-        if a.sigma < 1.0 {
-            out.push((a.edge, a.sigma, 1.0));
-        }
-        let mut k = (a.edge + 1) % n;
-        while k != b.edge {
-            out.push((k, 0.0, 1.0));
-            k = (k + 1) % n;
-        }
-        if b.sigma > 0.0 {
-            out.push((b.edge, 0.0, b.sigma));
-        }
-        out
-    }
-
-    /// Arclength from `a` forwards to `b`.
-    pub fn chain_length(&self, a: LoopPoint, b: LoopPoint) -> f64 {
-        self.chain(a, b)
-            .iter()
-            .map(|&(k, s0, s1)| (s1 - s0) * self.length(k))
-            .sum()
-    }
-
-    /// The loop point `s` (arclength) forwards from `a`.
-    pub fn advance(&self, a: LoopPoint, mut s: f64) -> LoopPoint {
-        let n = self.len();
-        let mut p = a;
-        for _ in 0..=n {
-            let rest = (1.0 - p.sigma) * self.length(p.edge);
-            if s < rest {
-                return LoopPoint {
-                    edge: p.edge,
-                    sigma: p.sigma + s / self.length(p.edge),
-                };
-            }
-            s -= rest;
-            p = LoopPoint {
-                edge: (p.edge + 1) % n,
-                sigma: 0.0,
-            };
-        }
-        p
-    }
-
-    /// Points and their (u, v) at the fractions `f` ∈ [0, 1] of the 3D arclength along the
-    /// loop from `a` forwards to `b`.
-    ///
-    /// # Errors
-    /// A point off the surface or a projection that fails, naming the edge.
-    pub fn sample(
-        &mut self,
-        a: LoopPoint,
-        b: LoopPoint,
-        f: &[f64],
-    ) -> Result<(Vec<Vec3>, Vec<[f64; 2]>), String> {
-        let pieces = self.chain(a, b);
-        let lens: Vec<f64> = pieces
-            .iter()
-            .map(|&(k, s0, s1)| (s1 - s0) * self.length(k))
-            .collect();
-        let total: f64 = lens.iter().sum();
-        let mut xs = Vec::with_capacity(f.len());
-        let mut uvs = Vec::with_capacity(f.len());
-        for &fr in f {
-            let mut s = fr.clamp(0.0, 1.0) * total;
-            let mut at = pieces.len() - 1;
-            for (i, l) in lens.iter().enumerate() {
-                if s <= *l || i + 1 == lens.len() {
-                    at = i;
-                    break;
-                }
-                s -= l;
-            }
-            let (k, s0, s1) = pieces[at];
-            let sigma = if lens[at] > 0.0 {
-                (s0 + (s1 - s0) * (s / lens[at]).clamp(0.0, 1.0)).clamp(0.0, 1.0)
-            } else {
-                s0
-            };
-            let e = &self.edges[k];
-            let x = e.curve.point(e.map.param_at(sigma));
-            // Start from the samples' (u, v), interpolated at σ.
-            let pos = sigma * NS as f64;
-            let i = (pos.floor() as usize).min(NS - 1);
-            let w = pos - i as f64;
-            let hint = [0, 1].map(|c| (1.0 - w) * e.uv[i][c] + w * e.uv[i + 1][c]);
-            let uv = self.project(x, hint, e.number)?;
-            xs.push(x);
-            uvs.push(uv);
-        }
-        Ok((xs, uvs))
     }
 }

@@ -99,6 +99,12 @@ struct GridArgs {
     /// Write the grid even if it folds (the exit code is still 3).
     #[arg(long)]
     allow_folded: bool,
+    /// Largest defect of a face's boundary healed, in percent of the loop's size: edges whose
+    /// ends miss each other, or points off the face's surface, beyond the file's tolerance
+    /// (sloppy exports). Each edge is then moved by a shift blended along it so the edges
+    /// meet, and the face's report says how far. 0 refuses any such face.
+    #[arg(long, value_name = "PERCENT", default_value_t = 100.0 * cad::HEAL)]
+    heal: f64,
     /// Print only errors.
     #[arg(short, long)]
     quiet: bool,
@@ -179,7 +185,19 @@ fn grid(a: &GridArgs) -> Result<()> {
         job::output_kind(p)?;
     }
     let name = a.file.display().to_string();
-    let cad::StepFaces { faces, unread } = cad::read_step(&a.file)?;
+    if !(0.0..=10.0).contains(&a.heal) {
+        return Err(Error::input(
+            "--heal",
+            format!(
+                "the percentage healed must be between 0 and 10, got {}",
+                a.heal
+            ),
+        ));
+    }
+    let cad::StepFaces { mut faces, unread } = cad::read_step(&a.file)?;
+    for f in &mut faces {
+        f.heal = a.heal / 100.0;
+    }
     if a.face.is_none() {
         for u in &unread {
             eprintln!("not read: {name}: {u}");
@@ -334,6 +352,13 @@ fn grid(a: &GridArgs) -> Result<()> {
                         };
                         println!("  {sides}: the cells there are triangles");
                     }
+                }
+                if g.healed > 0.0 {
+                    println!(
+                        "  healed: the file's edges miss each other or the surface by up to \
+                         {:.3e}, beyond its tolerance (--heal)",
+                        g.healed
+                    );
                 }
                 println!("{q}");
             }
