@@ -446,7 +446,7 @@ fn step_face(index: usize, shell: &Shell, face: &CompressedFace<StepSurface>) ->
         .iter()
         .map(|l| {
             // a vertex off its curve within what the loop heals ([`HEAL`]) is the loop's gap
-            let tol = tol.max(HEAL * loop_size(shell, l));
+            let heal = tol.max(HEAL * loop_size(shell, l));
             l.iter()
                 .enumerate()
                 .map(|(n, ei)| {
@@ -462,8 +462,12 @@ fn step_face(index: usize, shell: &Shell, face: &CompressedFace<StepSurface>) ->
                             .ok_or_else(|| at("a vertex is missing".into()))
                     };
                     let ends = (v(edge.vertices.0)?, v(edge.vertices.1)?);
-                    quietly(|| edge::loop_edge(&edge.curve, ends, ei.orientation, tol))
-                        .unwrap_or_else(|_| Err("its curve could not be evaluated".into()))
+                    let read = |tol: f64| {
+                        quietly(|| edge::loop_edge(&edge.curve, ends, ei.orientation, tol))
+                            .unwrap_or_else(|_| Err("its curve could not be evaluated".into()))
+                    };
+                    read(tol)
+                        .or_else(|e| if heal > tol { read(heal) } else { Err(e) })
                         .map_err(at)
                 })
                 .collect()
