@@ -343,7 +343,9 @@ impl<'a> FaceLoop<'a> {
         } else {
             newton(near)
         };
-        if pole && !found.is_some_and(|q| off(q) <= self.tol) {
+        // from a pole, or wherever Newton from the neighbour fails (a sphere's point next to
+        // its pole, where the step from the neighbour turns about the pole): a fresh start
+        if !found.is_some_and(|q| off(q) <= self.tol) {
             found = self
                 .initial_uv(x)
                 .ok()
