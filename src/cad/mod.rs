@@ -98,7 +98,7 @@ pub use crease::{
 pub use face::{grid_face, grid_face_by, Corners, FaceGrid, BALANCED, COLLAPSED};
 pub use patch::grid_patch;
 pub use reentrant::{grid_face_split, MAX_BLOCKS};
-pub use split::grid_face_blocks;
+pub use split::{grid_face_blocks, CLEARLY_VALID};
 pub use trim::HEAL;
 pub use unread::Unread;
 pub use write::write_step_surface;
