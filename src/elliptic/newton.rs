@@ -13,9 +13,13 @@
 //!
 //! # A step
 //! 1. Evaluate A, b and r = b − A x at the iterate (reused from the last line search).
-//! 2. Set up (or update) the linear solver for A, as a Picard step would.
-//! 3. Linearise (the coupling G) and solve J δ = r by FGMRES (from zero: no product for the
-//!    first residual) to the forcing term
+//! 2. Linearise (the coupling G) and set up the preconditioner: a multigrid per coordinate
+//!    on J's diagonal block A − G_cc. It is kept while the Krylov solves converge fast
+//!    ([`KEEP_RATE`]) and A's diagonal moves little ([`KEEP_CHANGE`]); where the diagonal
+//!    moved, a kept preconditioner is refreshed rather than set up again (its fine level at
+//!    the new iterate, its coarse levels kept: dented square at 1025², the same fine steps and
+//!    GMRES iterations, the second step's setup 0.45 → 0.13 s).
+//! 3. Solve J δ = r by FGMRES (from zero: no product for the first residual) to the forcing term
 //!    (`forcing`: Eisenstat–Walker), rows scaled by A's diagonal, so that the Krylov
 //!    residual weighs every node as the reported residual does.
 //! 4. Line search: accept x + λδ for λ = 1, then ½, if the residual of [24] (max over nodes,
@@ -87,6 +91,13 @@ pub(crate) trait NewtonSystem: System + Sync {
     /// Sets up the preconditioner of the Newton correction at the current iterate (after
     /// `linearize`): the linear solvers for the diagonal blocks A − G_cc of J.
     fn setup_preconditioner(&mut self) -> std::result::Result<(), SolveError>;
+    /// The preconditioner of the last `setup_preconditioner` brought to the current iterate
+    /// where that is cheaper than a new setup (multigrid: the fine level's operator and line
+    /// factors refreshed, the transfers and coarse levels kept,
+    /// [`crate::solve::LinearSolver::update`]). Default: a new setup.
+    fn refresh_preconditioner(&mut self) -> std::result::Result<(), SolveError> {
+        self.setup_preconditioner()
+    }
     /// `out ≈ J⁻¹ v` by the preconditioner (block Gauss–Seidel over the coordinates, one
     /// cycle per block); `v` is overwritten.
     fn precondition(&self, v: &mut [f64], out: &mut [f64]) -> std::result::Result<(), SolveError>;
@@ -190,7 +201,14 @@ pub(crate) fn run<S: NewtonSystem>(
                 scaled_residual(sys, buf);
                 let fresh = !ready || changed(&buf.scale, &buf.setup_scale) > KEEP_CHANGE;
                 if fresh {
-                    sys.setup_preconditioner().map_err(solve_error)?;
+                    // a kept preconditioner whose operator moved: its coarse levels still
+                    // serve (dented square 1025²: the same GMRES iterations, a third of the
+                    // setup's time)
+                    if ready {
+                        sys.refresh_preconditioner().map_err(solve_error)?;
+                    } else {
+                        sys.setup_preconditioner().map_err(solve_error)?;
+                    }
                     buf.setup_scale.copy_from_slice(&buf.scale);
                 }
                 let mut info = krylov(sys, buf, ctl, true).map_err(solve_error)?;

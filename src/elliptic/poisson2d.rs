@@ -349,6 +349,35 @@ impl<const D: usize> picard::System for System2<'_, D> {
     }
 }
 
+impl<const D: usize> System2<'_, D> {
+    /// Sets up (or with `refresh` updates, [`LinearSolver::update`]) each coordinate's solver
+    /// for its diagonal block A − G_cc of the Jacobian (`solver` for coordinate 0, `own` for
+    /// the others).
+    fn load_blocks(&mut self, refresh: bool) -> std::result::Result<(), SolveError> {
+        let cp = self
+            .coupling
+            .as_ref()
+            .expect("linearize before the preconditioner");
+        let scratch = self
+            .scratch
+            .get_or_insert_with(|| Stencil9::zeros(self.a.nx(), self.a.ny()));
+        for c in 0..D {
+            cp.own_operator(&self.a, c, scratch);
+            let solver: &mut dyn LinearSolver = if c == 0 {
+                &mut *self.solver
+            } else {
+                &mut *self.own[c - 1]
+            };
+            if refresh {
+                solver.update(scratch)?;
+            } else {
+                solver.setup(scratch)?;
+            }
+        }
+        Ok(())
+    }
+}
+
 impl<const D: usize> NewtonSystem for System2<'_, D> {
     fn coordinates(&self) -> usize {
         D
@@ -390,24 +419,19 @@ impl<const D: usize> NewtonSystem for System2<'_, D> {
             self.blocks = false;
             return self.solver.setup(&self.a);
         }
-        let cp = self
-            .coupling
-            .as_ref()
-            .expect("linearize before the preconditioner");
-        let scratch = self
-            .scratch
-            .get_or_insert_with(|| Stencil9::zeros(self.a.nx(), self.a.ny()));
-        for c in 0..D {
-            cp.own_operator(&self.a, c, scratch);
-            let solver: &mut dyn LinearSolver = if c == 0 {
-                &mut *self.solver
-            } else {
-                &mut *self.own[c - 1]
-            };
-            solver.setup(scratch)?;
-        }
+        self.load_blocks(false)?;
         self.blocks = true;
         Ok(())
+    }
+
+    /// The blocks A − G_cc at the current iterate into the solvers' fine levels
+    /// ([`LinearSolver::update`]), their coarse levels kept from the last setup; a full setup
+    /// where the solvers do not hold the blocks (after a Picard step).
+    fn refresh_preconditioner(&mut self) -> std::result::Result<(), SolveError> {
+        if !self.blocks {
+            return self.setup_preconditioner();
+        }
+        self.load_blocks(true)
     }
 
     fn precondition(&self, v: &mut [f64], out: &mut [f64]) -> std::result::Result<(), SolveError> {
