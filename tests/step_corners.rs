@@ -34,9 +34,12 @@ fn corners(g: &ellipgrid::grid::Grid2<3>) -> Vec<[i64; 2]> {
 fn a_thin_strip_whose_corners_by_turning_fold_grids_on_balanced_corners() {
     let face = strip();
     let d = DistributionSpec::Uniform {};
-    // Folded cells of the (u, v) grid with the first corners by turning angle (the tab's
-    // four vertices: sides 0.2, 0.8, 0.2 and 40.8 long), measured: 15 at 17 nodes, 14 at 33.
-    for (n, folded) in [(17, 15), (33, 14)] {
+    // The (u, v) grid with the first corners by turning angle (the tab's four vertices: sides
+    // 0.2, 0.8, 0.2 and 40.8 long) folds. Its Winslow solve does not converge on such corners
+    // (200 steps, residual ~9e-3 at 33 nodes), so how many cells fold is that of an
+    // unconverged iterate and moves with the linear solver's path (14 or 65 at 33 nodes,
+    // without and with the refreshed Newton preconditioner): only "folds" is asserted.
+    for n in [17, 33] {
         let mut solver = by_name("multigrid").unwrap();
         let old = grid_face_by(
             &face,
@@ -50,7 +53,7 @@ fn a_thin_strip_whose_corners_by_turning_fold_grids_on_balanced_corners() {
         match &old {
             Err(Error::Folded { place, count, .. }) => {
                 assert!(place.ends_with("(u, v) grid"), "{place}");
-                assert_eq!(*count, folded, "{n}");
+                assert!(*count > 0, "{n}");
             }
             Err(e) => panic!("{n}: {e}"),
             Ok(g) => panic!(
