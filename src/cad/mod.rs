@@ -382,15 +382,7 @@ fn surface_type(s: &StepSurface) -> &'static str {
 /// Distance within which a vertex is on its edge's curve: 1e-4 of the shell's size (real
 /// files' gaps reach ~6e-5 of it).
 fn vertex_tolerance(shell: &Shell) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &shell.vertices {
-        for (c, v) in [p.x, p.y, p.z].into_iter().enumerate() {
-            lo[c] = lo[c].min(v);
-            hi[c] = hi[c].max(v);
-        }
-    }
-    let d = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+    let d = diagonal(shell.vertices.iter());
     if d.is_finite() {
         1e-4 * d + 1e-12
     } else {
@@ -398,25 +390,29 @@ fn vertex_tolerance(shell: &Shell) -> f64 {
     }
 }
 
-/// The diagonal of the box of the vertices of loop `l` (0 if one is missing).
-fn loop_size(shell: &Shell, l: &[truck_topology::compress::CompressedEdgeIndex]) -> f64 {
+/// The diagonal of the box of `points` (infinite if there are none, NaN with a NaN point).
+fn diagonal<'a>(points: impl Iterator<Item = &'a Point3>) -> f64 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    for ei in l {
-        let Some(edge) = shell.edges.get(ei.index) else {
-            return 0.0;
-        };
-        for k in [edge.vertices.0, edge.vertices.1] {
-            let Some(p) = shell.vertices.get(k) else {
-                return 0.0;
-            };
-            for (c, v) in [p.x, p.y, p.z].into_iter().enumerate() {
-                lo[c] = lo[c].min(v);
-                hi[c] = hi[c].max(v);
-            }
+    for p in points {
+        for (c, v) in [p.x, p.y, p.z].into_iter().enumerate() {
+            lo[c] = lo[c].min(v);
+            hi[c] = hi[c].max(v);
         }
     }
-    let d = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The diagonal of the box of the vertices of loop `l` (0 if one is missing).
+fn loop_size(shell: &Shell, l: &[truck_topology::compress::CompressedEdgeIndex]) -> f64 {
+    let ends = l.iter().flat_map(|ei| {
+        let e = shell.edges.get(ei.index);
+        [e.map(|e| e.vertices.0), e.map(|e| e.vertices.1)]
+    });
+    let points: Option<Vec<&Point3>> = ends
+        .map(|k| k.and_then(|k| shell.vertices.get(k)))
+        .collect();
+    let d = points.map_or(0.0, |p| diagonal(p.into_iter()));
     if d.is_finite() {
         d
     } else {
