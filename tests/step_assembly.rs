@@ -4,7 +4,7 @@
 //! variant, made by `make_assembly.py`).
 
 mod common;
-use common::{ellipgrid, grid_node as node, root, text};
+use common::{ellipgrid, grid_node as node, root, step_grid_all, text};
 use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::solve::direct::DirectLu;
@@ -80,21 +80,7 @@ fn a_part_used_twice_in_a_sub_assembly_is_gridded_at_both_places() {
         2,
         "{out}"
     );
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            path.to_str().unwrap(),
-            "--all",
-            "--ni",
-            "5",
-            "--nj",
-            "5",
-            "-o",
-            "a.x",
-        ],
-    );
+    let o = step_grid_all(dir.path(), path.to_str().unwrap(), ("5", "5"), "a.x");
     assert!(o.status.success(), "{}", text(&o));
     let p = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("a.x")).unwrap();
     assert_eq!(p.blocks.len(), 2);
@@ -129,21 +115,7 @@ fn mapped_items_place_a_part_like_the_assembly_relationships() {
         ("plane_triangle_mapped.step", "m.x"),
     ] {
         let path = file(name);
-        let o = ellipgrid(
-            dir.path(),
-            &[
-                "step",
-                "grid",
-                path.to_str().unwrap(),
-                "--all",
-                "--ni",
-                "5",
-                "--nj",
-                "5",
-                "-o",
-                out,
-            ],
-        );
+        let o = step_grid_all(dir.path(), path.to_str().unwrap(), ("5", "5"), out);
         assert!(o.status.success(), "{}", text(&o));
     }
     let (a, m) = (

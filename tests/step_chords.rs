@@ -4,7 +4,7 @@
 //! whose every corner set of one block and whose bisector cuts fold.
 
 mod common;
-use common::{ellipgrid, grid_area, grid_node as node, root, text};
+use common::{grid_area, grid_node as node, root, step_grid_all, text};
 use ellipgrid::cad::{
     grid_face_blocks, grid_face_by, grid_face_chords, grid_face_split, read_step_faces, Corners,
     FaceGrid, CLEARLY_VALID,
@@ -128,21 +128,7 @@ fn step_grid_writes_the_comb_as_thirteen_blocks() {
 fn step_grid_writes_thirteen_blocks(name: &str) {
     let dir = tempfile::tempdir().unwrap();
     let path = root().join("data/step").join(name);
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            path.to_str().unwrap(),
-            "--all",
-            "--ni",
-            "33",
-            "--nj",
-            "33",
-            "-o",
-            "c.vtm",
-        ],
-    );
+    let o = step_grid_all(dir.path(), path.to_str().unwrap(), ("33", "33"), "c.vtm");
     let t = text(&o);
     assert_eq!(o.status.code(), Some(0), "{t}");
     assert!(t.contains("face1.b12 "), "{t}");

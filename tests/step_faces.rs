@@ -4,7 +4,9 @@
 //! to the exact area at second order (error ratio ≈ 4 per halving), no folds.
 
 mod common;
-use common::{assert_second_order, ellipgrid, grid_area as area, grid_node as node, root, text};
+use common::{
+    assert_second_order, ellipgrid, grid_area as area, grid_node as node, root, step_grid_all, text,
+};
 use ellipgrid::cad::{grid_face, read_step_faces, FaceGrid};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Grid2;
@@ -311,21 +313,7 @@ fn bare_surfaces_of_a_geometric_set_are_read_and_gridded_on_their_surfaces() {
         assert_eq!(f.route(), ellipgrid::cad::Route::Patch, "face {}", f.index);
     }
     let d = tempfile::tempdir().unwrap();
-    let o = ellipgrid(
-        d.path(),
-        &[
-            "step",
-            "grid",
-            path.to_str().unwrap(),
-            "--all",
-            "--ni",
-            "17",
-            "--nj",
-            "9",
-            "-o",
-            "bare.x",
-        ],
-    );
+    let o = step_grid_all(d.path(), path.to_str().unwrap(), ("17", "9"), "bare.x");
     assert!(o.status.success(), "{}", text(&o));
     let file = ellipgrid::io::plot3d::read_plot3d(&d.path().join("bare.x")).unwrap();
     assert_eq!(file.blocks.len(), 2);

@@ -6,7 +6,7 @@
 //! blocks' normals the face's.
 
 mod common;
-use common::{ellipgrid, grid_node as node, root, text};
+use common::{ellipgrid, grid_node as node, root, step_grid_all, text};
 use ellipgrid::cad::{grid_face_blocks, read_step_faces, FaceGrid, Route};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Grid2;
@@ -290,21 +290,7 @@ fn a_closed_nurbs_band_is_periodic_across_the_rows_where_it_closes() {
     // Through the CLI: four blocks written.
     let dir = tempfile::tempdir().unwrap();
     let step = file("nurbs_band_seamless.step");
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            step.to_str().unwrap(),
-            "--all",
-            "--ni",
-            "17",
-            "--nj",
-            "9",
-            "-o",
-            "band.x",
-        ],
-    );
+    let o = step_grid_all(dir.path(), step.to_str().unwrap(), ("17", "9"), "band.x");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let p = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("band.x")).unwrap();
     assert_eq!(p.blocks.len(), 4);

@@ -5,7 +5,7 @@
 //! whose one block folds, and `step grid` writes the blocks.
 
 mod common;
-use common::{ellipgrid, grid_area, grid_node as node, root, text};
+use common::{ellipgrid, grid_area, grid_node as node, root, step_grid_all, text};
 use ellipgrid::cad::{
     grid_face, grid_face_blocks, grid_face_by, grid_face_split, read_step_faces, Corners::Turning,
     FaceGrid,
@@ -239,21 +239,7 @@ fn step_grid_writes_the_cut_blocks_with_exit_0() {
     let dir = tempfile::tempdir().unwrap();
     // A face whose one block folds: cut by default.
     let slot = file("plane_slot.step");
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            slot.to_str().unwrap(),
-            "--all",
-            "--ni",
-            "17",
-            "--nj",
-            "17",
-            "-o",
-            "s.x",
-        ],
-    );
+    let o = step_grid_all(dir.path(), slot.to_str().unwrap(), ("17", "17"), "s.x");
     let t = text(&o);
     assert_eq!(o.status.code(), Some(0), "{t}");
     assert!(t.contains("face1.b2 (plane, 17 × 17 nodes)"), "{t}");

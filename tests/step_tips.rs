@@ -5,7 +5,7 @@
 //! whose corner sets by turning angle, balanced sets and cut at the notch all fold.
 
 mod common;
-use common::{ellipgrid, grid_area, grid_node as node, root, text};
+use common::{grid_area, grid_node as node, root, step_grid_all, text};
 use ellipgrid::cad::{grid_face_blocks, grid_face_by, grid_face_split, read_step_faces, Corners};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::grid::Edge;
@@ -170,21 +170,7 @@ fn a_band_whose_corner_sets_and_cuts_fold_grids_fold_free_with_both_tips_collaps
 fn step_grid_writes_the_band_with_both_tips_collapsed() {
     let dir = tempfile::tempdir().unwrap();
     let path = root().join("data/step/plane_tips.step");
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            path.to_str().unwrap(),
-            "--all",
-            "--ni",
-            "33",
-            "--nj",
-            "9",
-            "-o",
-            "t.vts",
-        ],
-    );
+    let o = step_grid_all(dir.path(), path.to_str().unwrap(), ("33", "9"), "t.vts");
     let t = text(&o);
     assert_eq!(o.status.code(), Some(0), "{t}");
     assert!(t.contains("corners turning 144°, 144°, 144°, 144°"), "{t}");

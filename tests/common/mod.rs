@@ -146,3 +146,13 @@ pub fn assert_second_order(name: &str, errs: &[f64]) {
         );
     }
 }
+
+/// `ellipgrid step grid STEP --all --ni NI --nj NJ -o OUT` run in `dir`.
+pub fn step_grid_all(dir: &Path, step: &str, (ni, nj): (&str, &str), out: &str) -> Output {
+    ellipgrid(
+        dir,
+        &[
+            "step", "grid", step, "--all", "--ni", ni, "--nj", nj, "-o", out,
+        ],
+    )
+}
