@@ -5,7 +5,7 @@
 //! | [`curve`] | parametric curves in R³ on u ∈ [0, 1], arclength maps | [`Curve`], [`ArclengthMap`], [`sample`] |
 //! | [`distribution`] | normalized point distributions on [0, 1] (METHOD.md [30–38]) | [`Distribution`], [`vinokur`], [`geometric`] |
 //! | [`airfoil`] | Selig / Lednicer `.dat` files | [`read_airfoil_dat`], [`airfoil_curve`] |
-//! | [`surface`] | parametric surfaces on (u, v) ∈ [0, 1]² with 2nd derivatives; closest point | [`Surface`], [`HermiteSurface`], [`BSplineSurf`], [`project`], [`SurfaceLocator`] |
+//! | [`surface`] | parametric surfaces on (u, v) ∈ [0, 1]² with 2nd derivatives; closest point (one surface or a model of several); surface–surface intersection | [`Surface`], [`HermiteSurface`], [`BSplineSurf`], [`project`], [`SurfaceLocator`], [`ModelLocator`], [`trace_intersection`] |
 //! | [`bvh`] | conservative f64 box hierarchy over obvhs | [`BoxTree`] |
 //! | [`random`] | a fixed-seed generator (random warps, scrambled starts) | [`random::SplitMix64`] |
 //!
@@ -49,9 +49,10 @@ pub use curve::{
 };
 pub use distribution::{geometric, reverse, uniform, vinokur, vinokur_refined, Distribution};
 pub use surface::{
-    project, project_to_edge, project_within, scherk_distance, BSplineSurf, HermiteSurface, Plane,
-    Scherk, Surface, SurfaceEdge, SurfaceLocator, SurfacePoint, TanhBump, TruckCurve, TruckSurface,
-    Warp, Warped,
+    intersection_point, project, project_to_edge, project_within, scherk_distance,
+    trace_intersection, BSplineSurf, HermiteSurface, ModelLocator, ModelPoint, ModelSample, Plane,
+    Projector, Scherk, Surface, SurfaceEdge, SurfaceLocator, SurfacePoint, TanhBump, TruckCurve,
+    TruckSurface, Warp, Warped,
 };
 
 /// A point or vector in R³; planar curves have z = 0.

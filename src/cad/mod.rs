@@ -77,6 +77,7 @@ mod face;
 mod fan;
 mod hole_cuts;
 mod holes;
+mod model;
 mod patch;
 mod pieces;
 mod placement;
@@ -96,6 +97,7 @@ pub use crease::{
     CREASE_TURN,
 };
 pub use face::{grid_face, grid_face_by, Corners, FaceGrid, BALANCED, COLLAPSED};
+pub use model::{step_model, EdgeChain};
 pub use patch::grid_patch;
 pub use reentrant::{grid_face_split, MAX_BLOCKS};
 pub use split::{grid_face_blocks, CLEARLY_VALID};

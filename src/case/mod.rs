@@ -419,6 +419,13 @@ impl LoadedCase {
                     .collect::<Result<Vec<_>>>()?;
                 Box::new(geo::SurfaceLine::new(s, uv).map_err(geo_err)?)
             }
+            CurveSpec::Intersection { .. } | CurveSpec::Iso { .. } | CurveSpec::Edges { .. } => {
+                return Err(Error::input(
+                    at,
+                    "intersection, iso and edges curves lie on a STEP model: only edges of a surface \
+                     block with surface = { type = \"step\", ... } take them",
+                ))
+            }
             CurveSpec::Naca4 {
                 code,
                 chord,

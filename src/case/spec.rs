@@ -458,6 +458,27 @@ pub enum CurveSpec {
     /// A curve on a `[[surface]]`: the polyline through parameter points `uv` ([u, v] each,
     /// at least two) mapped onto the surface (e.g. `[[0, 0], [1, 0]]`: the side v = 0).
     OnSurface { surface: String, uv: Vec<Vec<f64>> },
+    /// On a `type = "step"` block's model only: the junction where the model meets face
+    /// `face` of the same STEP file (a pylon on a wing), from its point nearest `from` to the
+    /// one nearest `to` (traced by [`ellipgrid_geometry::trace_intersection`]).
+    Intersection {
+        face: usize,
+        from: Vec<f64>,
+        to: Vec<f64>,
+    },
+    /// On a `type = "step"` block's model only: the line of face `face` of the STEP file
+    /// where `u` (or `v`) is fixed, the other parameter running `from` → `to` (default 0 → 1:
+    /// an untrimmed patch's normalized parameters; a trimmed face's are its surface's own).
+    Iso {
+        face: usize,
+        u: Option<f64>,
+        v: Option<f64>,
+        from: Option<f64>,
+        to: Option<f64>,
+    },
+    /// On a `type = "step"` block's model only: edges `edges` of face `face`'s outer loop
+    /// (1-based, in loop order, as `step list --edges` numbers them) run one after the other.
+    Edges { face: usize, edges: Vec<usize> },
 }
 
 fn one() -> f64 {
@@ -589,6 +610,18 @@ pub enum SurfaceSpec {
     TanhBump {},
     /// Scherk's minimal surface z = ln(cos y / cos x) over [−a, a]².
     Scherk { half_width: f64 },
+    /// A block face on a STEP model that need not be a CAD face (issue #14): the model is
+    /// faces `faces` of `file` (1-based, as `step list` numbers them), the block's four edges
+    /// are curves on it (`line`, `polyline`, `spline` projected onto it, `iso` lines of its
+    /// faces, `intersection`s with another face), and the surface is the bicubic Hermite net
+    /// of `net` = [m, n] points (default the block's ni × nj) spanned by those edges and
+    /// projected onto the model (the paper's wing–pylon way, §5); the grid's nodes are moved
+    /// onto the model at the end.
+    Step {
+        file: PathBuf,
+        faces: Vec<usize>,
+        net: Option<[usize; 2]>,
+    },
 }
 
 /// `[[volume]]`: one volume block.

@@ -99,7 +99,23 @@ impl LoadedCase {
             SurfaceSpec::Scherk { half_width } => {
                 Box::new(geo::Scherk::new(*half_width).map_err(geo_err)?)
             }
+            SurfaceSpec::Step { .. } => {
+                return Err(Error::input(
+                    place,
+                    "a STEP model (type = \"step\") is the surface of a block whose four edges \
+                     lie on it: give it inline as a surface block's surface (`ellipgrid run`), \
+                     not as a named or reference surface",
+                ))
+            }
         })
+    }
+
+    /// Whether block k is a block face on a STEP model (`surface = { type = "step", ... }`).
+    pub fn is_model_block(&self, k: usize) -> bool {
+        matches!(
+            self.case.blocks[k].surface,
+            Some(SurfaceRef::Inline(SurfaceSpec::Step { .. }))
+        )
     }
 
     /// The surface of block k and the (u, v) of its boundary nodes (E1..E4, index order),
@@ -119,10 +135,17 @@ impl LoadedCase {
         self.check_size(k)?;
         let mut uv: [Vec<[f64; 2]>; 4] = Default::default();
         let [ni, nj] = self.block_dims(k);
+        // On a STEP model the edges' curves made the net; its own sides carry them now.
+        let on_model = self.is_model_block(k);
         for (e, spec) in Edge::ALL.into_iter().zip(self.edge_specs(k)?) {
             let at = format!("{place}, edge {e}");
             let n = if e.runs_along_i() { ni } else { nj };
-            uv[e.index()] = match (&spec.curve, spec.reverse) {
+            let curve = if on_model {
+                (&None, false)
+            } else {
+                (&spec.curve, spec.reverse)
+            };
+            uv[e.index()] = match curve {
                 (None, false) => {
                     let map = edge_map(surface, e);
                     let sigma = spec.distribution.sample(n, map.length(), &at)?;

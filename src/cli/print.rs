@@ -38,6 +38,12 @@ pub fn block(b: &BlockReport) {
             d.max, d.rms
         );
     }
+    if let Some(d) = &b.model_distance {
+        println!(
+            "  nodes moved onto the STEP model: max {:.3e}, rms {:.3e}",
+            d.max, d.rms
+        );
+    }
     if let Some(t) = &b.surface_steps {
         println!(
             "  Section 4 pipeline: initial grid {:.3} s, Laplace–Beltrami {:.3} s, target {:.3} s, \

@@ -30,6 +30,10 @@ enum StepCommand {
     List {
         /// The STEP file (.step/.stp).
         file: PathBuf,
+        /// Also print each face's outer-loop edges (numbered from 1 in loop order, as case
+        /// files name them in `curve = { type = "edges", face, edges }`) with their ends.
+        #[arg(long)]
+        edges: bool,
     },
     /// Grid faces of a STEP file as four-sided block faces by the Section 4 pipeline: any face
     /// bounded by one loop of edges, on any surface type; a face with holes as an O-type ring
@@ -113,7 +117,7 @@ struct GridArgs {
 /// Runs `ellipgrid step …`.
 pub fn step(a: &StepArgs) -> Result<()> {
     match &a.command {
-        StepCommand::List { file } => list(file),
+        StepCommand::List { file, edges } => list(file, *edges),
         StepCommand::Grid(g) => grid(g),
         StepCommand::Export {
             net,
@@ -124,7 +128,7 @@ pub fn step(a: &StepArgs) -> Result<()> {
     }
 }
 
-fn list(file: &Path) -> Result<()> {
+fn list(file: &Path, edges: bool) -> Result<()> {
     let read = cad::read_step(file)?;
     for f in read.faces {
         let what = match f.route() {
@@ -144,11 +148,35 @@ fn list(file: &Path) -> Result<()> {
             Route::Refused(why) => format!("not gridable: {why}"),
         };
         println!("face {}: {}, {what}", f.index, f.surface_type);
+        if edges {
+            list_edges(&f);
+        }
     }
     for u in &read.unread {
         println!("not read: {u}");
     }
     Ok(())
+}
+
+/// `step list --edges`: the face's outer-loop edges, each with its ends and chord.
+fn list_edges(f: &StepFace) {
+    let n = f
+        .loops
+        .as_ref()
+        .map_or(0, |l| l.first().map_or(0, Vec::len));
+    for k in 1..=n {
+        let at = format!("face {}, edge {k}", f.index);
+        match cad::EdgeChain::new(f, &[k], &at) {
+            Ok(c) => {
+                let (a, b) = (c.point(0.0), c.point(1.0));
+                println!(
+                    "  edge {k}: ({:.6}, {:.6}, {:.6}) → ({:.6}, {:.6}, {:.6})",
+                    a.x, a.y, a.z, b.x, b.y, b.z
+                );
+            }
+            Err(e) => println!("  edge {k}: {e}"),
+        }
+    }
 }
 
 /// The cut lines of a patch for `step list`: "; creases at u = … (normal turning …)",

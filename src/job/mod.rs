@@ -5,6 +5,7 @@
 
 pub mod floating;
 mod mesh;
+pub mod model;
 pub mod multiblock;
 pub(crate) mod multiblock_wall;
 pub mod multivolume;
@@ -52,6 +53,10 @@ pub struct BlockReport {
     /// Distance of the nodes from the block's `reference` surface, if it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub surface_distance: Option<SurfaceDistance>,
+    /// How far the nodes of a block on a STEP model were moved onto the model at the end
+    /// (the distance of its Hermite net's surface from the model there).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_distance: Option<SurfaceDistance>,
     /// The first spacing along each wall edge (`wall`) against its targets.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub wall: Vec<WallSpacing2>,
@@ -203,6 +208,7 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
         let mut wall = Vec::new();
         let mut surface_steps = None;
         let mut surface_distance = None;
+        let mut model_distance = None;
         let (block, picard, quality) = match spec.blocks[k].kind {
             BlockKind::Planar => {
                 let b = case.planar_boundary(k)?;
@@ -223,9 +229,17 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             }
             BlockKind::Surface => {
                 no_surface_wall(sides.wall, &place)?;
-                let (surface, uv) = case.surface_block(k)?;
-                let r =
-                    grid_surface_orthogonal(surface.as_ref(), &uv, orth, solver.as_mut(), &place)?;
+                let r = if case.is_model_block(k) {
+                    // a block face on a STEP model: its net's surface, nodes moved onto the model
+                    let m = model::model_block(case, k)?;
+                    let mut r =
+                        grid_surface_orthogonal(&m.surface, &m.uv, orth, solver.as_mut(), &place)?;
+                    model_distance = Some(model::onto_model(&mut r.grid, &m));
+                    r
+                } else {
+                    let (surface, uv) = case.surface_block(k)?;
+                    grid_surface_orthogonal(surface.as_ref(), &uv, orth, solver.as_mut(), &place)?
+                };
                 let q = quality::quality_surface(&r.grid);
                 surface_steps = Some(r.times);
                 (Block::Surface(r.grid), None, q)
@@ -241,6 +255,7 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             picard,
             surface_steps,
             surface_distance,
+            model_distance,
             wall,
             quality,
         };

@@ -169,6 +169,7 @@ fn grid_group(
             picard: picard.cloned(),
             surface_steps: steps,
             surface_distance: d,
+            model_distance: None,
             wall,
             quality: q,
         };

@@ -139,7 +139,7 @@ impl<S: Surface> SurfaceLocator<S> {
 
 /// Closest point to p on triangle (a, b, c) and its barycentric coordinates (Ericson,
 /// Real-Time Collision Detection, §5.1.5: Voronoi regions of vertices, edges, face).
-fn closest_on_triangle(p: Vec3, [a, b, c]: [Vec3; 3]) -> (Vec3, [f64; 3]) {
+pub(super) fn closest_on_triangle(p: Vec3, [a, b, c]: [Vec3; 3]) -> (Vec3, [f64; 3]) {
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
     if d1 <= 0.0 && d2 <= 0.0 {

@@ -12,6 +12,8 @@
 //! | `project` | [`project`], [`project_within`], [`project_to_edge`]: safeguarded Newton for the closest point |
 //! | `truck` | [`TruckSurface`], [`TruckCurve`]: any truck surface / curve in its own parameters (a surface that closes on itself periodic there) |
 //! | `locate` | [`SurfaceLocator`]: BVH of sampled cells ([`crate::BoxTree`]) + Newton |
+//! | `model` | [`ModelLocator`]: closest points on several surfaces (a CAD model's faces), one BVH over their samples |
+//! | `intersect` | [`trace_intersection`]: the curve where two surfaces meet, by predictor–corrector marching |
 //! | `warp` | [`Warp`], [`Warped`]: a smooth random re-parametrization x(W(u, v)) (fixed seed) |
 //!
 //! Every impl gives exact derivatives; the tests check them against central differences.
@@ -41,7 +43,9 @@
 mod analytic;
 mod bspline;
 mod hermite;
+mod intersect;
 mod locate;
+mod model;
 mod project;
 #[cfg(test)]
 pub(crate) mod testutil;
@@ -51,7 +55,9 @@ mod warp;
 pub use analytic::{scherk_distance, Plane, Scherk, TanhBump};
 pub use bspline::BSplineSurf;
 pub use hermite::HermiteSurface;
+pub use intersect::{intersection_point, trace_intersection, Projector};
 pub use locate::SurfaceLocator;
+pub use model::{ModelLocator, ModelPoint, ModelSample};
 pub use project::{project, project_to_edge, project_within};
 pub use truck::{TruckCurve, TruckSurface};
 pub use warp::{Warp, WarpJet, Warped};

@@ -1,0 +1,239 @@
+//! Block faces on a STEP model that are not CAD faces (issue #14, item 4): `kind = "surface"`
+//! blocks with `surface = { type = "step", file, faces }`, their edges projected lines, iso
+//! lines or junctions with another face, gridded through a Hermite net projected onto the
+//! model (Section 4), the nodes moved onto the model at the end.
+
+mod common;
+
+use common::{ellipgrid, root, text};
+use ellipgrid::io::{plot3d::read_plot3d, Block};
+use ellipgrid::Grid2;
+use std::path::Path;
+
+/// Runs `case` (written as `case.toml` in `dir`) through the CLI and reads its one grid.
+fn run(dir: &Path, case: &str) -> Grid2<3> {
+    std::fs::write(dir.join("case.toml"), case).unwrap();
+    let o = ellipgrid(
+        dir,
+        &["run", "case.toml", "-o", "g.x", "--report", "r.json"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let f = read_plot3d(&dir.join("g.x")).unwrap();
+    let Block::Surface(g) = &f.blocks[0] else {
+        panic!("a surface block")
+    };
+    g.clone()
+}
+
+/// A block on the twisted wing patch (z = 0.1 sin(1.3x) cos(0.9y) + 0.05xy): its edges
+/// lines, a spline and a polyline in the plane z = 0, projected onto the model.
+fn twisted_case(file: &str) -> String {
+    let step = root().join("data/step").join(file);
+    format!(
+        r#"[[block]]
+name = "inner"
+kind = "surface"
+ni = 49
+nj = 33
+surface = {{ type = "step", file = "{}", faces = [1] }}
+[block.E1]
+curve = {{ type = "line", from = [0.3, 0.2, 0.0], to = [0.2, 1.3, 0.0] }}
+[block.E2]
+curve = {{ type = "line", from = [1.7, 0.3, 0.0], to = [1.8, 1.2, 0.0] }}
+distribution = {{ type = "vinokur", first = 0.005 }}
+[block.E3]
+curve = {{ type = "spline", points = [[0.3, 0.2, 0.0], [1.0, 0.1, 0.0], [1.7, 0.3, 0.0]] }}
+distribution = {{ type = "vinokur", first = 0.005 }}
+[block.E4]
+curve = {{ type = "polyline", points = [[0.2, 1.3, 0.0], [1.0, 1.35, 0.0], [1.8, 1.2, 0.0]] }}
+"#,
+        step.display()
+    )
+}
+
+fn twisted(x: f64, y: f64) -> f64 {
+    0.1 * (1.3 * x).sin() * (0.9 * y).cos() + 0.05 * x * y
+}
+
+/// The same shape in two CAD parametrizations (uniform, and nearly singular at two edges):
+/// the grids agree to the files' fit error (the net is built in space, not in (u, v)), and
+/// every node lies on the shape.
+#[test]
+fn model_grid_does_not_depend_on_the_cad_parametrization() {
+    let d = tempfile::tempdir().unwrap();
+    let a = run(d.path(), &twisted_case("wing_patch_twisted.step"));
+    let b = run(d.path(), &twisted_case("wing_patch_twisted_reparam.step"));
+    let diff = common::max_diff(a.coords(), b.coords());
+    eprintln!("twisted patch, two parametrizations: grids differ by {diff:.3e}");
+    assert!(diff < 1e-7, "{diff}");
+    for g in [&a, &b] {
+        for k in 0..g.len() {
+            let (x, y, z) = (g.coord(0)[k], g.coord(1)[k], g.coord(2)[k]);
+            assert!((z - twisted(x, y)).abs() < 1e-7, "node {k} off the shape");
+        }
+    }
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.path().join("r.json")).unwrap()).unwrap();
+    let b0 = &r["blocks"][0];
+    assert_eq!(b0["quality"]["folded_cells"], 0);
+    // the net's Hermite surface lies within 1e-6 of the model at the nodes
+    assert!(b0["model_distance"]["max"].as_f64().unwrap() < 1e-6, "{b0}");
+}
+
+/// Edges that are iso lines of the face: the block is the patch's sub-rectangle
+/// [0, 0.8] × [0.1, 0.9] in (u, v) = (x/2, y/1.5); the E3 nodes lie on y = 0.15, the E1
+/// nodes on x = 0, to the Hermite net's accuracy (nodes are moved onto the model, not onto
+/// an iso line: 1e-9 here).
+#[test]
+fn iso_line_edges_bound_the_sub_patch() {
+    let d = tempfile::tempdir().unwrap();
+    let step = root().join("data/step/wing_patch_twisted.step");
+    let case = format!(
+        r#"[[block]]
+kind = "surface"
+ni = 33
+nj = 25
+surface = {{ type = "step", file = "{}", faces = [1], net = [41, 31] }}
+[block.E1]
+curve = {{ type = "iso", face = 1, u = 0.0, from = 0.1, to = 0.9 }}
+[block.E2]
+curve = {{ type = "iso", face = 1, u = 0.8, from = 0.1, to = 0.9 }}
+[block.E3]
+curve = {{ type = "iso", face = 1, v = 0.1, to = 0.8 }}
+[block.E4]
+curve = {{ type = "iso", face = 1, v = 0.9, to = 0.8 }}
+"#,
+        step.display()
+    );
+    let g = run(d.path(), &case);
+    let (ni, nj) = (g.ni(), g.nj());
+    for i in 0..ni {
+        let p = g.point(i, 0);
+        assert!((p[1] - 0.15).abs() < 1e-8, "E3 node {i}: {p:?}");
+    }
+    for j in 0..nj {
+        let p = g.point(0, j);
+        assert!(p[0].abs() < 1e-8, "E1 node {j}: {p:?}");
+        let q = g.point(ni - 1, j);
+        assert!((q[0] - 1.6).abs() < 1e-8, "E2 node {j}: {q:?}");
+    }
+    assert!((g.point(ni - 1, nj - 1)[1] - 1.35).abs() < 1e-8);
+}
+
+/// Bad model blocks: exit 2, the block and edge named, nothing written.
+#[test]
+fn bad_model_blocks_are_refused_by_name() {
+    let step = root().join("data/step/wing_patch_twisted.step");
+    let block = |faces: &str, e1: &str, e4: &str| {
+        format!(
+            r#"[[block]]
+name = "m"
+kind = "surface"
+ni = 9
+nj = 9
+surface = {{ type = "step", file = "{}", faces = [{faces}] }}
+[block.E1]
+curve = {e1}
+[block.E2]
+curve = {{ type = "line", from = [1.5, 0.2, 0], to = [1.5, 1.2, 0] }}
+[block.E3]
+curve = {{ type = "line", from = [0.5, 0.2, 0], to = [1.5, 0.2, 0] }}
+[block.E4]
+curve = {e4}
+"#,
+            step.display()
+        )
+    };
+    let e1 = r#"{ type = "line", from = [0.5, 0.2, 0], to = [0.5, 1.2, 0] }"#;
+    let e4 = r#"{ type = "line", from = [0.5, 1.2, 0], to = [1.5, 1.2, 0] }"#;
+    // E4 starting 0.1 away from E1's end: more than 2 % of the edges
+    let far = r#"{ type = "line", from = [0.6, 1.2, 0], to = [1.5, 1.2, 0] }"#;
+    common::rejects(
+        &block("1", e1, far),
+        &["block 'm'", "edges E1 and E4 do not meet"],
+    );
+    common::rejects(&block("3", e1, e4), &["face 3 is not in the file"]);
+    let arc = r#"{ type = "arc", center = [1, 1, 0], radius = 0.5, start_deg = 0, end_deg = 90 }"#;
+    common::rejects(
+        &block("1", arc, e4),
+        &["block 'm', edge E1", "a line, polyline or spline"],
+    );
+    let both = r#"{ type = "iso", face = 1, u = 0.2, v = 0.3 }"#;
+    common::rejects(&block("1", both, e4), &["edge E1", "fixes one of u and v"]);
+    let miss = r#"{ type = "intersection", face = 1, from = [0.5, 0.2, 0], to = [0.5, 1.2, 0] }"#;
+    common::rejects(&block("1", miss, e4), &["edge E1", "junction with face 1"]);
+    // a STEP model is not a named or reference surface
+    let named = format!(
+        "[[surface]]\nname = \"s\"\ntype = \"step\"\nfile = \"{}\"\nfaces = [1]\n{}",
+        step.display(),
+        block("1", e1, e4).replace(
+            &format!(
+                "{{ type = \"step\", file = \"{}\", faces = [1] }}",
+                step.display()
+            ),
+            "\"s\""
+        )
+    );
+    common::rejects(&named, &["block whose four edges lie on it"]);
+}
+
+/// Edges that are the face's own CAD edges (`step list --edges` numbers them): the block is
+/// the whole face, the same grid as with iso lines of its sides; a chain of edges that do not
+/// follow each other is refused.
+#[test]
+fn cad_edges_make_the_same_block_as_iso_lines() {
+    let d = tempfile::tempdir().unwrap();
+    let step = root().join("data/step/wing_patch_twisted.step");
+    let case = |e: [&str; 4]| {
+        format!(
+            "[[block]]\nname = \"w\"\nkind = \"surface\"\nni = 33\nnj = 25\n\
+             surface = {{ type = \"step\", file = \"{}\", faces = [1] }}\n\
+             [block.E1]\n{}\n[block.E2]\n{}\n[block.E3]\n{}\n[block.E4]\n{}\n",
+            step.display(),
+            e[0],
+            e[1],
+            e[2],
+            e[3]
+        )
+    };
+    // loop: edge 1 (0, 1.5) → (0, 0), 2 along y = 0, 3 along x = 2, 4 (2, 1.5) → (0, 1.5)
+    let by_edges = run(
+        d.path(),
+        &case([
+            "curve = { type = \"edges\", face = 1, edges = [1] }\nreverse = true",
+            "curve = { type = \"edges\", face = 1, edges = [3] }",
+            "curve = { type = \"edges\", face = 1, edges = [2] }",
+            "curve = { type = \"edges\", face = 1, edges = [4] }\nreverse = true",
+        ]),
+    );
+    let by_iso = run(
+        d.path(),
+        &case([
+            "curve = { type = \"iso\", face = 1, u = 0.0 }",
+            "curve = { type = \"iso\", face = 1, u = 1.0 }",
+            "curve = { type = \"iso\", face = 1, v = 0.0 }",
+            "curve = { type = \"iso\", face = 1, v = 1.0 }",
+        ]),
+    );
+    let diff = common::max_diff(by_edges.coords(), by_iso.coords());
+    eprintln!("whole twisted face by CAD edges and by iso lines: grids differ by {diff:.3e}");
+    assert!(diff < 1e-8, "{diff}");
+    assert!((by_edges.point(32, 24)[0] - 2.0).abs() < 1e-12);
+    let apart = case([
+        "curve = { type = \"edges\", face = 1, edges = [1, 3] }",
+        "curve = { type = \"edges\", face = 1, edges = [3] }",
+        "curve = { type = \"edges\", face = 1, edges = [2] }",
+        "curve = { type = \"edges\", face = 1, edges = [4] }",
+    ]);
+    common::rejects(&apart, &["edge E1", "edges 1 and 3 of face 1 do not meet"]);
+    let o = ellipgrid(
+        d.path(),
+        &["step", "list", "--edges", step.to_str().unwrap()],
+    );
+    assert!(
+        text(&o)
+            .contains("edge 3: (2.000000, 0.000000, 0.051550) → (2.000000, 1.500000, 0.161290)"),
+        "{}",
+        text(&o)
+    );
+}
