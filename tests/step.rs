@@ -2,7 +2,9 @@
 //! equals the grid of the original surface to 1e-12; faces that are not untrimmed four-sided
 //! B-spline patches and unreadable files give exit 2 with a message naming the file and face.
 
-use ellipgrid::cad::{self, grid_patch, read_step_faces, write_step_surface};
+use ellipgrid::cad::{
+    self, grid_patch, read_step_faces, write_step_surface, write_step_surfaces, Route,
+};
 use ellipgrid::case::DistributionSpec;
 use ellipgrid::solve::direct::DirectLu;
 use ellipgrid::Grid2;
@@ -93,6 +95,90 @@ fn bspline_written_read_and_gridded_equals_the_original_grid() {
     }
     // The library entry point for case files gives the same surface.
     assert_eq!(&cad::step_surface(&path, 1).unwrap(), read);
+}
+
+/// Three B-spline faces written in one shell come back numbered in the order given, each an
+/// untrimmed four-sided patch evaluating to its surface's points (to the writer's print
+/// precision); a side two surfaces share is one edge of the shell, and bad input writes no file.
+#[test]
+fn several_surfaces_written_in_order_read_back_as_the_same_patches() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("three.step");
+    let a = net().to_bspline();
+    // b: a bicubic strip below a in y whose last column is a's first exactly (u knots shared)
+    let (acp, uk) = (a.control_points(), a.uknot_vec().clone());
+    let b_cp: Vec<Vec<Point3>> = acp
+        .iter()
+        .map(|col| {
+            let p = col[0];
+            vec![
+                Point3::new(p.x, p.y - 0.9, p.z + 0.1),
+                Point3::new(p.x, p.y - 0.6, p.z - 0.05),
+                Point3::new(p.x, p.y - 0.3, p.z + 0.02),
+                p,
+            ]
+        })
+        .collect();
+    let b = BSplineSurface::new((uk, KnotVec::bezier_knot(3)), b_cp);
+    // c: a biquadratic bump far away, so that a reordering cannot go unseen
+    let c_cp: Vec<Vec<Point3>> = (0..3)
+        .map(|i| {
+            (0..4)
+                .map(|j| {
+                    let (x, y) = (5.0 + i as f64, 3.0 + 0.5 * j as f64);
+                    Point3::new(x, y, 0.3 * (i * j) as f64)
+                })
+                .collect()
+        })
+        .collect();
+    let c = BSplineSurface::new(
+        (
+            KnotVec::bezier_knot(2),
+            KnotVec::from(vec![0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0]),
+        ),
+        c_cp,
+    );
+    let surfaces = [a, b, c];
+    write_step_surfaces(&path, &surfaces).unwrap();
+    let read = cad::read_step(&path).unwrap();
+    assert!(read.unread.is_empty(), "{:?}", read.unread);
+    assert_eq!(read.faces.len(), 3);
+    for (k, (f, s)) in read.faces.iter().zip(&surfaces).enumerate() {
+        assert_eq!(f.index, k + 1);
+        assert_eq!(f.route(), Route::Patch, "face {}: {:?}", k + 1, f.trimmed);
+        assert!(f.orientation, "face {}", k + 1);
+        let original = BSplineSurf::from_truck_bspline(s).unwrap();
+        let got = f.patch(&path).unwrap();
+        assert_eq!(got.degrees(), original.degrees());
+        let mut off = 0.0_f64;
+        for n in 0..=20 * 20 {
+            let (u, v) = ((n % 21) as f64 / 20.0, (n / 21) as f64 / 20.0);
+            off = off.max((got.point(u, v) - original.point(u, v)).norm());
+        }
+        assert!(off < 1e-12, "face {}: {off:e}", k + 1);
+    }
+    // a and b share one edge (and its two vertices): 4 + 3 + 4 edges, 4 + 2 + 4 vertices
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(text.matches("= EDGE_CURVE(").count(), 11);
+    assert_eq!(text.matches("= VERTEX_POINT(").count(), 10);
+    // one surface: the same file as write_step_surface writes
+    let (one, many) = (dir.path().join("one.step"), dir.path().join("many.step"));
+    write_step_surface(&one, &surfaces[1]).unwrap();
+    write_step_surfaces(&many, &surfaces[1..2]).unwrap();
+    let data = |p: &Path| {
+        let t = std::fs::read_to_string(p).unwrap();
+        t[t.find("DATA;").unwrap()..].to_string()
+    };
+    assert_eq!(data(&one), data(&many));
+    // no surface, or a bad one among good ones: an input error naming it, no file
+    let bad_path = dir.path().join("bad.step");
+    let e = write_step_surfaces(&bad_path, &[]).unwrap_err();
+    assert!(e.to_string().contains("no surface"), "{e}");
+    let mut bad = surfaces[2].clone();
+    *bad.control_point_mut(1, 1) = Point3::new(f64::NAN, 0.0, 0.0);
+    let e = write_step_surfaces(&bad_path, &[surfaces[0].clone(), bad]).unwrap_err();
+    assert!(e.to_string().contains("surface 2"), "{e}");
+    assert!(!bad_path.exists());
 }
 
 /// Writes a STEP shell with one B-spline face of the plane z = 0 over [0, 1]², bounded by
@@ -333,6 +419,63 @@ fn cli_export_then_grid_round_trip() {
         text.contains("face 1: B-spline, four-sided patch, degrees 3 × 3"),
         "{text}"
     );
+}
+
+/// `step export --all` writes every block of a control-net file as faces 1, 2, … of one
+/// shell, in block order, each the block's bicubic B-spline; `--all` with `--block` is refused.
+#[test]
+fn cli_export_all_blocks_as_faces_in_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = net();
+    let (ni, nj) = (7, 5);
+    let b = h.to_bspline();
+    // block k: the net's Hermite nodes moved up by k
+    let blocks: Vec<ellipgrid::io::Block> = (0..3)
+        .map(|k| {
+            Grid2::<3>::from_fn(ni, nj, |i, j| {
+                let p = b.control_points()[3 * i][3 * j];
+                [p.x, p.y, p.z + k as f64]
+            })
+            .into()
+        })
+        .collect();
+    let netx = dir.path().join("nets.x");
+    let fmt = ellipgrid::io::plot3d::Plot3dFormat::default();
+    ellipgrid::io::plot3d::write_plot3d(&netx, &blocks, &fmt, None).unwrap();
+    let step = dir.path().join("nets.step");
+    let out = bin()
+        .args(["step", "export", "--all"])
+        .arg(&netx)
+        .arg("-o")
+        .arg(&step)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    assert!(
+        text.contains("3 control nets (7 × 5, 7 × 5, 7 × 5)"),
+        "{text}"
+    );
+    let faces = read_step_faces(&step).unwrap();
+    assert_eq!(faces.len(), 3);
+    let original = BSplineSurf::from_truck_bspline(&b).unwrap();
+    for (k, f) in faces.iter().enumerate() {
+        assert_eq!(f.route(), Route::Patch);
+        let s = f.patch(&step).unwrap();
+        for (u, v) in [(0.0, 0.0), (0.3, 0.7), (1.0, 0.5), (0.5, 1.0)] {
+            let d = s.point(u, v) - original.point(u, v) - Vec3::new(0.0, 0.0, k as f64);
+            assert!(d.norm() < 1e-12, "face {}: {d:?}", k + 1);
+        }
+    }
+    let out = bin()
+        .args(["step", "export", "--all", "--block", "2"])
+        .arg(&netx)
+        .arg("-o")
+        .arg(dir.path().join("no.step"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(!dir.path().join("no.step").exists());
 }
 
 #[test]

@@ -1,7 +1,8 @@
 //! The shape of the wing–pylon example (paper Fig. 33–36): the lower surface of a wing of
 //! NACA 0012 section (chord 2 m) next to a pylon, whose intersection with the wing is the wall
-//! E3 (v = 0). Shared by `make_wing_pylon` (which writes the shipped control net) and the
-//! tests (which build other nets of the same shape).
+//! E3 (v = 0), and the wing's upper surface. Shared by `make_wing_pylon` (which writes the
+//! shipped control net), `make_wing_pylon_step` (which writes the STEP model) and the tests
+//! (which build other nets of the same shape, or check the model against it).
 #![allow(dead_code)]
 
 /// Chordwise extent of the patch (m), pylon leading edge, outboard edge (m).
@@ -19,12 +20,23 @@ pub fn pylon_half_width(x: f64) -> f64 {
 
 /// The wing's lower surface z(x, y): NACA 0012 thickness on a 2 m chord, slight dihedral.
 pub fn lower_surface(x: f64, y: f64) -> f64 {
+    -half_thickness(x) + 0.02 * y
+}
+
+/// The wing's upper surface z(x, y): the mirror of [`lower_surface`]'s thickness, the same
+/// dihedral.
+pub fn upper_surface(x: f64, y: f64) -> f64 {
+    half_thickness(x) + 0.02 * y
+}
+
+/// Half the NACA 0012 thickness (m) at chordwise station x on a 2 m chord.
+fn half_thickness(x: f64) -> f64 {
     let c = 2.0;
     let t = x / c;
     let half = 0.6
         * (0.2969 * t.sqrt() - 0.1260 * t - 0.3516 * t * t + 0.2843 * t.powi(3)
             - 0.1015 * t.powi(4));
-    -c * half + 0.02 * y
+    c * half
 }
 
 /// The point of the patch at (a, b) ∈ [0, 1]²: a chordwise, b spanwise from the pylon.

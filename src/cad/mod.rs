@@ -18,7 +18,7 @@
 //! | `band` | a closed band without a seam edge (two winding loops) split into four blocks |
 //! | `blocks` | a split face's blocks gridded as block faces (cuts sampled once, shared bit for bit) |
 //! | `split` | [`grid_face_blocks`]: any face as one block or several (cuts shared bit for bit) |
-//! | `write` | [`write_step_surface`]: one B-spline face bounded by its four iso-parameter sides |
+//! | `write` | [`write_step_surfaces`]: B-spline faces of one open shell, each bounded by its four iso-parameter sides ([`write_step_surface`]: one) |
 //! | `prescan` | bounds on the STEP text before truck-stepio expands it |
 //! | `rewrite` | entity forms truck-stepio loses, rewritten in the text to ones it reads |
 //! | `units` | the file's plane angle unit (cone angles to radians) and distance uncertainty |
@@ -103,7 +103,7 @@ pub use reentrant::{grid_face_split, MAX_BLOCKS};
 pub use split::{grid_face_blocks, CLEARLY_VALID};
 pub use trim::HEAL;
 pub use unread::Unread;
-pub use write::write_step_surface;
+pub use write::{write_step_surface, write_step_surfaces};
 
 use crate::{Error, Result};
 use ellipgrid_geometry::BSplineSurf;

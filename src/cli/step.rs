@@ -40,13 +40,16 @@ enum StepCommand {
     /// of four blocks around each hole, a closed band without a seam edge as four blocks.
     Grid(GridArgs),
     /// Write a surface block of a Plot3D file, taken as a Hermite control net, as a bicubic
-    /// B-spline face in a STEP file.
+    /// B-spline face in a STEP file (or every block, as the faces of one shell).
     Export {
         /// The control net: a Plot3D file (any flavour) with a surface (or planar) block.
         net: PathBuf,
         /// The block to export (1-based).
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, conflicts_with = "all")]
         block: usize,
+        /// Export every block, as faces 1, 2, … of one open shell in the file's block order.
+        #[arg(long)]
+        all: bool,
         /// The STEP file to write.
         #[arg(short, long = "output", value_name = "OUT.step")]
         output: PathBuf,
@@ -122,9 +125,10 @@ pub fn step(a: &StepArgs) -> Result<()> {
         StepCommand::Export {
             net,
             block,
+            all,
             output,
             quiet,
-        } => export(net, *block, output, *quiet),
+        } => export(net, (!*all).then_some(*block), output, *quiet),
     }
 }
 
@@ -507,43 +511,60 @@ fn face_connectivity(blocks: &[(String, Block)]) -> ConnFile {
     connectivity::from_matches(&dims, &matches, &family)
 }
 
-fn export(net: &Path, block: usize, output: &Path, quiet: bool) -> Result<()> {
+/// Writes block `block` of the control-net file `net` (every block if `None`) as bicubic
+/// B-spline faces of one STEP shell.
+fn export(net: &Path, block: Option<usize>, output: &Path, quiet: bool) -> Result<()> {
     let file = plot3d::read_plot3d(net)?;
-    let place = format!("{}: block {block}", net.display());
-    let b = block
-        .checked_sub(1)
-        .and_then(|k| file.blocks.get(k))
-        .ok_or_else(|| {
-            Error::input(
-                &place,
-                format!("no such block: the file has {}", file.blocks.len()),
-            )
-        })?;
-    let [ni, nj, _] = b.dims();
-    let pts: Vec<Vec3> = match b {
-        Block::Surface(g) => (0..g.len())
-            .map(|p| Vec3::new(g.coord(0)[p], g.coord(1)[p], g.coord(2)[p]))
-            .collect(),
-        Block::Planar(g) => (0..g.len())
-            .map(|p| Vec3::new(g.coord(0)[p], g.coord(1)[p], 0.0))
-            .collect(),
-        Block::Volume(_) => {
-            return Err(Error::input(
-                place,
-                "a volume block is not a control net: give a surface block",
-            ))
-        }
+    let blocks: Vec<usize> = match block {
+        Some(k) => vec![k],
+        None => (1..=file.blocks.len()).collect(),
     };
-    let h = HermiteSurface::new(ni, nj, pts).map_err(|source| Error::Geometry {
-        place: place.clone(),
-        source,
-    })?;
-    cad::write_step_surface(output, &h.to_bspline())?;
+    let mut surfaces = Vec::with_capacity(blocks.len());
+    let mut sizes = Vec::with_capacity(blocks.len());
+    for k in blocks {
+        let place = format!("{}: block {k}", net.display());
+        let b = k
+            .checked_sub(1)
+            .and_then(|k| file.blocks.get(k))
+            .ok_or_else(|| {
+                Error::input(
+                    &place,
+                    format!("no such block: the file has {}", file.blocks.len()),
+                )
+            })?;
+        let [ni, nj, _] = b.dims();
+        let pts: Vec<Vec3> = match b {
+            Block::Surface(g) => (0..g.len())
+                .map(|p| Vec3::new(g.coord(0)[p], g.coord(1)[p], g.coord(2)[p]))
+                .collect(),
+            Block::Planar(g) => (0..g.len())
+                .map(|p| Vec3::new(g.coord(0)[p], g.coord(1)[p], 0.0))
+                .collect(),
+            Block::Volume(_) => {
+                return Err(Error::input(
+                    place,
+                    "a volume block is not a control net: give a surface block",
+                ))
+            }
+        };
+        let h = HermiteSurface::new(ni, nj, pts).map_err(|source| Error::Geometry {
+            place: place.clone(),
+            source,
+        })?;
+        surfaces.push(h.to_bspline());
+        sizes.push(format!("{ni} × {nj}"));
+    }
+    cad::write_step_surfaces(output, &surfaces)?;
     if !quiet {
-        println!(
-            "wrote {} ({ni} × {nj} control net as a bicubic B-spline face)",
-            output.display()
-        );
+        let what = match sizes.as_slice() {
+            [one] => format!("{one} control net as a bicubic B-spline face"),
+            many => format!(
+                "{} control nets ({}) as bicubic B-spline faces",
+                many.len(),
+                many.join(", ")
+            ),
+        };
+        println!("wrote {} ({what})", output.display());
     }
     Ok(())
 }
