@@ -53,7 +53,7 @@ pub fn step_model(faces: &[StepFace], pick: &[usize], place: &str) -> Result<Mod
             continue;
         }
         let mut solver =
-            crate::solve::select::by_name("auto").map_err(|m| Error::input(at.clone(), m))?;
+            crate::solve::select::by_name("multigrid").map_err(|m| Error::input(at.clone(), m))?;
         let u = DistributionSpec::Uniform {};
         let grids = grid_face_blocks(face, (FACE_NODES, FACE_NODES), &u, &u, solver.as_mut(), &at)
             .map_err(|e| Error::input(at.clone(), format!("cannot be sampled: {e}")))?;

@@ -460,7 +460,8 @@ pub enum CurveSpec {
     OnSurface { surface: String, uv: Vec<Vec<f64>> },
     /// On a `type = "step"` block's model only: the junction where the model meets face
     /// `face` of the same STEP file (a pylon on a wing), from its point nearest `from` to the
-    /// one nearest `to` (traced by [`ellipgrid_geometry::trace_intersection`]).
+    /// one nearest `to`, both first put on the model as projected edges are (traced by
+    /// [`ellipgrid_geometry::trace_intersection`]).
     Intersection {
         face: usize,
         from: Vec<f64>,
@@ -616,11 +617,14 @@ pub enum SurfaceSpec {
     /// faces, `intersection`s with another face), and the surface is the bicubic Hermite net
     /// of `net` = [m, n] points (default the block's ni × nj) spanned by those edges and
     /// projected onto the model (the paper's wing–pylon way, §5); the grid's nodes are moved
-    /// onto the model at the end.
+    /// onto the model at the end. `along` = [x, y, z]: lines, polylines and splines are
+    /// projected along this direction (a planform line onto a wing: [0, 0, 1]) instead of to
+    /// their closest points.
     Step {
         file: PathBuf,
         faces: Vec<usize>,
         net: Option<[usize; 2]>,
+        along: Option<Vec<f64>>,
     },
 }
 

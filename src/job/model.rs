@@ -41,6 +41,22 @@ pub struct ModelBlock {
     pub junctions: [Option<ModelLocator>; 4],
 }
 
+/// Where projected edges go onto the model: along a direction, else to the closest point.
+struct Onto<'a> {
+    model: &'a ModelLocator,
+    along: Option<Vec3>,
+}
+
+impl Onto<'_> {
+    fn place(&self, p: Vec3) -> Option<Vec3> {
+        match self.along {
+            Some(d) => self.model.along(p, d),
+            None => self.model.closest(p),
+        }
+        .map(|q| q.x)
+    }
+}
+
 /// A curve on the model by its own parameter.
 type Curve1 = Box<dyn Fn(f64) -> Vec3 + Send + Sync>;
 
@@ -69,8 +85,12 @@ impl Snap {
 /// a net point that cannot be projected; those of reading the STEP file.
 pub fn model_block(case: &LoadedCase, k: usize) -> Result<ModelBlock> {
     let place = case.block_place(k);
-    let Some(SurfaceRef::Inline(SurfaceSpec::Step { file, faces, net })) =
-        &case.case.blocks[k].surface
+    let Some(SurfaceRef::Inline(SurfaceSpec::Step {
+        file,
+        faces,
+        net,
+        along,
+    })) = &case.case.blocks[k].surface
     else {
         return Err(Error::input(place, "not a block on a STEP model"));
     };
@@ -86,6 +106,23 @@ pub fn model_block(case: &LoadedCase, k: usize) -> Result<ModelBlock> {
         return Err(Error::input(file_place, "faces = [...] names no face"));
     }
     let model = cad::step_model(&step, faces, &file_place)?;
+    let along = match along {
+        None => None,
+        Some(d) => {
+            let d = crate::case::point(d, &file_place, "along")?;
+            if d.norm() <= 0.0 {
+                return Err(Error::input(
+                    file_place,
+                    "along = [0, 0, 0] has no direction",
+                ));
+            }
+            Some(d / d.norm())
+        }
+    };
+    let onto = Onto {
+        model: &model,
+        along,
+    };
     let specs = case.edge_specs(k)?;
     let mut edges = Vec::with_capacity(4);
     for (e, spec) in Edge::ALL.into_iter().zip(specs) {
@@ -97,7 +134,7 @@ pub fn model_block(case: &LoadedCase, k: usize) -> Result<ModelBlock> {
                  iso or intersection)",
             ));
         };
-        let (mut pts, mut snap) = dense_edge(case, &model, &step, curve, &at)?;
+        let (mut pts, mut snap) = dense_edge(case, &onto, &step, curve, &at)?;
         if spec.reverse {
             pts.reverse();
             if let Snap::Exact(t, _) = &mut snap {
@@ -106,7 +143,7 @@ pub fn model_block(case: &LoadedCase, k: usize) -> Result<ModelBlock> {
         }
         edges.push((pts, snap));
     }
-    meet_at_corners(&model, &mut edges, &place)?;
+    meet_at_corners(&onto, &mut edges, &place)?;
     let [ni, nj] = case.block_dims(k);
     let [m, n] = net.unwrap_or([ni, nj]);
     if m < 4 || n < 4 {
@@ -120,7 +157,7 @@ pub fn model_block(case: &LoadedCase, k: usize) -> Result<ModelBlock> {
         .zip(&edges)
         .map(|(e, (pts, snap))| {
             let count = if e.runs_along_i() { m } else { n };
-            resample(&model, pts, snap, count, &format!("{place}, edge {e}"))
+            resample(&onto, pts, snap, count, &format!("{place}, edge {e}"))
         })
         .collect::<Result<_>>()?;
     let closest = |p: Vec3| model.closest(p).map(|q| q.x);
@@ -151,15 +188,14 @@ pub fn model_block(case: &LoadedCase, k: usize) -> Result<ModelBlock> {
 /// The edge's curve as a dense polyline on the model, and how resampled points return to it.
 fn dense_edge(
     case: &LoadedCase,
-    model: &ModelLocator,
+    onto: &Onto,
     step: &[cad::StepFace],
     curve: &CurveSpec,
     at: &str,
 ) -> Result<(Vec<Vec3>, Snap)> {
+    let model = onto.model;
     let on_model = |p: Vec3| {
-        model
-            .closest(p)
-            .map(|q| q.x)
+        onto.place(p)
             .ok_or_else(|| Error::input(at, "a point cannot be projected onto the model"))
     };
     match curve {
@@ -206,8 +242,11 @@ fn dense_edge(
         CurveSpec::Intersection { face, from, to } => {
             step_face(step, *face, at)?;
             let other = cad::step_model(step, &[*face], at)?;
-            let from = crate::case::point(from, at, "from")?;
-            let to = crate::case::point(to, at, "to")?;
+            // the ends first put on the model as projected edges are (then the junction's
+            // points nearest them are where a projected neighbour edge ends, not nearest the
+            // given points off the model)
+            let from = on_model(crate::case::point(from, at, "from")?)?;
+            let to = on_model(crate::case::point(to, at, "to")?)?;
             let h = (to - from).norm() / (DENSE - 1) as f64;
             let a = |p: Vec3| model.closest(p).map(|q| (q.x, q.normal));
             let b = |p: Vec3| other.closest(p).map(|q| (q.x, q.normal));
@@ -251,11 +290,7 @@ fn step_face<'a>(step: &'a [cad::StepFace], n: usize, at: &str) -> Result<&'a ca
 /// (1, 0), E1 and E4 at (0, 1), E2 and E4 at (1, 1). An exact edge's end wins; two projected
 /// ends meet at their mean's projection; each projected edge is then shifted along itself
 /// (linearly in arclength, then back onto the model) so that its ends are the corners.
-fn meet_at_corners(
-    model: &ModelLocator,
-    edges: &mut [(Vec<Vec3>, Snap)],
-    place: &str,
-) -> Result<()> {
+fn meet_at_corners(onto: &Onto, edges: &mut [(Vec<Vec3>, Snap)], place: &str) -> Result<()> {
     let len = |p: &[Vec3]| p.windows(2).map(|w| (w[1] - w[0]).norm()).sum::<f64>();
     let names = ["E1", "E2", "E3", "E4"];
     // (edge, at its end?) pairs of each corner
@@ -273,7 +308,7 @@ fn meet_at_corners(
         let (xa, xb) = (edges[a].1.exact(), edges[b].1.exact());
         let shorter = len(&edges[a].0).min(len(&edges[b].0));
         let limit = if xa && xb {
-            EXACT_MEET * model.diagonal()
+            EXACT_MEET * onto.model.diagonal()
         } else {
             MEET * shorter
         };
@@ -295,7 +330,7 @@ fn meet_at_corners(
         let c = match (xa, xb) {
             (true, _) => pa,
             (false, true) => pb,
-            _ => model.closest(0.5 * (pa + pb)).map(|q| q.x).ok_or_else(|| {
+            _ => onto.place(0.5 * (pa + pb)).ok_or_else(|| {
                 Error::input(place, "a corner cannot be projected onto the model")
             })?,
         };
@@ -317,15 +352,12 @@ fn meet_at_corners(
             s += (*p - prev).norm();
             prev = *p;
             let w = s / total;
-            *p = model
-                .closest(*p + d0 * (1.0 - w) + d1 * w)
-                .map(|q| q.x)
-                .ok_or_else(|| {
-                    Error::input(
-                        place,
-                        format!("edge {} cannot be shifted onto the model", names[e]),
-                    )
-                })?;
+            *p = onto.place(*p + d0 * (1.0 - w) + d1 * w).ok_or_else(|| {
+                Error::input(
+                    place,
+                    format!("edge {} cannot be shifted onto the model", names[e]),
+                )
+            })?;
         }
         pts[0] = c0;
         *pts.last_mut().unwrap() = c1;
@@ -335,19 +367,13 @@ fn meet_at_corners(
 
 /// `count` points at uniform arclength along the dense polyline, back on the edge's curve;
 /// the ends kept.
-fn resample(
-    model: &ModelLocator,
-    pts: &[Vec3],
-    snap: &Snap,
-    count: usize,
-    at: &str,
-) -> Result<Vec<Vec3>> {
+fn resample(onto: &Onto, pts: &[Vec3], snap: &Snap, count: usize, at: &str) -> Result<Vec<Vec3>> {
     let st = uniform_stations(pts, count);
     let lin = at_stations(pts, &st);
     let mut out = match snap {
         Snap::Model => lin
             .par_iter()
-            .map(|p| model.closest(*p).map(|q| q.x))
+            .map(|p| onto.place(*p))
             .collect::<Option<Vec<_>>>(),
         Snap::Exact(t, eval) => Some(
             st.iter()
@@ -355,6 +381,7 @@ fn resample(
                 .collect(),
         ),
         Snap::Junction(other) => {
+            let model = onto.model;
             let tol = 1e-13 * (1.0 + model.diagonal());
             let a = |p: Vec3| model.closest(p).map(|q| (q.x, q.normal));
             let b = |p: Vec3| other.closest(p).map(|q| (q.x, q.normal));
