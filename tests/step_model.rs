@@ -378,3 +378,97 @@ curve = {{ type = "line", from = [0.5, 0.4, 1.0], to = [3.5, 0.4, 1.0] }}
         }
     }
 }
+
+/// A band around the filleted vertical edge of the OpenCascade plate: three trimmed CAD faces
+/// (the side x = 40, the fillet cylinder r = 3 about (37, 27), the side y = 30), the block's
+/// long edges polylines cutting the corner, projected onto the model. The band is developable:
+/// unrolled it is a 33.71 × 5 rectangle, and with uniform edges its grid is the uniform grid
+/// there. Every node on the model to rounding; the error against the unrolled uniform grid
+/// falls about 12 times per halving of the net spacing (the net's surface converging to the
+/// model across the faces' curvature jumps).
+#[test]
+fn band_around_a_fillet_spans_three_cad_faces() {
+    let d = tempfile::tempdir().unwrap();
+    let step = root().join("data/step/plate_with_holes.step");
+    let (ni, nj) = (49, 9);
+    let long = 17.0 + 1.5 * std::f64::consts::PI + 12.0;
+    // unrolled arclength from (40, 10) along the band
+    let s_of = |x: f64, y: f64| {
+        if y <= 27.0 && (x - 40.0).abs() < 1e-9 {
+            y - 10.0
+        } else if x <= 37.0 && (y - 30.0).abs() < 1e-9 {
+            17.0 + 1.5 * std::f64::consts::PI + (37.0 - x)
+        } else {
+            17.0 + 3.0 * (y - 27.0).atan2(x - 37.0)
+        }
+    };
+    let mut errs = Vec::new();
+    for net in ["49, 9", "97, 17", "193, 33"] {
+        let case = format!(
+            r#"[[block]]
+name = "band"
+kind = "surface"
+ni = {ni}
+nj = {nj}
+surface = {{ type = "step", file = "{}", faces = [1, 3, 6], net = [{net}] }}
+[block.E1]
+curve = {{ type = "line", from = [40, 10, 0], to = [40, 10, 5] }}
+[block.E2]
+curve = {{ type = "line", from = [25, 30, 0], to = [25, 30, 5] }}
+[block.E3]
+curve = {{ type = "polyline", points = [[40, 10, 0], [40, 27, 0], [37, 30, 0], [25, 30, 0]] }}
+[block.E4]
+curve = {{ type = "polyline", points = [[40, 10, 5], [40, 27, 5], [37, 30, 5], [25, 30, 5]] }}
+"#,
+            step.display()
+        );
+        let g = run(d.path(), &case);
+        let mut err = 0.0f64;
+        for j in 0..nj {
+            for i in 0..ni {
+                let [x, y, z] = g.point(i, j);
+                let on_side = ((x - 40.0).abs() < 1e-12 && y <= 27.0)
+                    || ((y - 30.0).abs() < 1e-12 && x <= 37.0)
+                    || (((x - 37.0).hypot(y - 27.0) - 3.0).abs() < 1e-12 && x >= 37.0 && y >= 27.0);
+                assert!(on_side, "node ({i}, {j}) off the model: {:?}", [x, y, z]);
+                let want = [
+                    long * i as f64 / (ni - 1) as f64,
+                    5.0 * j as f64 / (nj - 1) as f64,
+                ];
+                err = err
+                    .max((s_of(x, y) - want[0]).abs())
+                    .max((z - want[1]).abs());
+            }
+        }
+        errs.push(err);
+    }
+    eprintln!("fillet band against its unrolled uniform grid, nets 49, 97, 193: {errs:?}");
+    assert!(
+        errs[0] < 1e-3 && errs[0] / errs[1] > 8.0 && errs[1] / errs[2] > 8.0,
+        "{errs:?}"
+    );
+}
+
+/// `ellipgrid verify` on the wing–pylon block on its STEP model: the grid family converges at
+/// second order and the grid does not depend on the net's parametrization (warped).
+#[test]
+fn verify_passes_on_the_step_model_block() {
+    let d = tempfile::tempdir().unwrap();
+    let case = root().join("examples/wing_pylon_step.toml");
+    let o = ellipgrid(
+        d.path(),
+        &["verify", case.to_str().unwrap(), "--report", "v.json"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains("pass: 1 of 1 blocks pass"),
+        "{}",
+        text(&o)
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.path().join("v.json")).unwrap()).unwrap();
+    let b = &r["blocks"][0];
+    let p = b["family"]["order_rms"][0].as_f64().unwrap();
+    assert!(p > 1.8, "observed order {p}: {b}");
+    assert_eq!(b["parametrization"]["pass"], true, "{b}");
+}

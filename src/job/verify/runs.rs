@@ -107,20 +107,36 @@ fn surfaces(
             continue;
         }
         let place = case.block_place(k);
-        let surface = case.surface(k)?;
+        // a block on a STEP model: its net's surface, the nodes moved onto the model at the end
+        let model = if case.is_model_block(k) {
+            Some(crate::job::model::model_block(case, k)?)
+        } else {
+            None
+        };
+        let owned;
+        let surface: &dyn Surface = match &model {
+            Some(m) => &m.surface,
+            None => {
+                owned = case.surface(k)?;
+                owned.as_ref()
+            }
+        };
         let orth = case.block_orthogonal(k)?;
         let mut solver = linear(case)?;
         let mut grid = |s: &dyn Surface| -> Result<SurfaceResult> {
             let uv = case.surface_uv(k, s)?;
             grid_surface_orthogonal(s, &uv, orth, solver.as_mut(), &place)
         };
-        let r = match warp {
+        let mut r = match warp {
             Some(w) => grid(&Warped {
-                surface: surface.as_ref(),
+                surface,
                 warp: w.clone(),
             })?,
-            None => grid(surface.as_ref())?,
+            None => grid(surface)?,
         };
+        if let Some(m) = &model {
+            crate::job::model::onto_model(&mut r.grid, m);
+        }
         let g = match opts.surface_grid {
             SurfaceGrid::Section4 => r.grid,
             SurfaceGrid::Initial => r.initial,
