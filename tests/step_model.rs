@@ -153,6 +153,11 @@ curve = {e4}
         &["block 'm'", "edges E1 and E4 do not meet"],
     );
     common::rejects(&block("3", e1, e4), &["face 3 is not in the file"]);
+    let off = r#"{ type = "line", from = [0.5, 0.2, 9], to = [0.5, 1.2, 9] }"#;
+    common::rejects(
+        &block("1", off, e4),
+        &["edge E1", "from the model, more than its length"],
+    );
     let arc = r#"{ type = "arc", center = [1, 1, 0], radius = 0.5, start_deg = 0, end_deg = 90 }"#;
     common::rejects(
         &block("1", arc, e4),
@@ -357,13 +362,13 @@ ni = 31
 nj = 7
 surface = {{ type = "step", file = "{}", faces = [1], along = [0, 0, 1] }}
 [block.E1]
-curve = {{ type = "line", from = [0.5, 0.1, 1.0], to = [0.5, 0.4, 1.0] }}
+curve = {{ type = "line", from = [0.5, 0.1, 0.1], to = [0.5, 0.4, 0.1] }}
 [block.E2]
-curve = {{ type = "line", from = [3.5, 0.1, 1.0], to = [3.5, 0.4, 1.0] }}
+curve = {{ type = "line", from = [3.5, 0.1, 0.1], to = [3.5, 0.4, 0.1] }}
 [block.E3]
-curve = {{ type = "line", from = [0.5, 0.1, 1.0], to = [3.5, 0.1, 1.0] }}
+curve = {{ type = "line", from = [0.5, 0.1, 0.1], to = [3.5, 0.1, 0.1] }}
 [block.E4]
-curve = {{ type = "line", from = [0.5, 0.4, 1.0], to = [3.5, 0.4, 1.0] }}
+curve = {{ type = "line", from = [0.5, 0.4, 0.1], to = [3.5, 0.4, 0.1] }}
 "#,
         step.display()
     );

@@ -201,10 +201,30 @@ fn dense_edge(
     match curve {
         CurveSpec::Line { .. } | CurveSpec::Polyline { .. } | CurveSpec::Spline { .. } => {
             let c = case.curve(curve, at)?;
-            let pts = (0..DENSE)
-                .into_par_iter()
-                .map(|q| on_model(c.point(q as f64 / (DENSE - 1) as f64)))
+            let given: Vec<Vec3> = (0..DENSE)
+                .map(|q| c.point(q as f64 / (DENSE - 1) as f64))
+                .collect();
+            let pts = given
+                .par_iter()
+                .map(|p| on_model(*p))
                 .collect::<Result<Vec<_>>>()?;
+            // a curve far from the model (wrong coordinates, or faces missing from `faces`)
+            // is an error, not a silent projection
+            let len: f64 = given.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+            let far = given
+                .iter()
+                .zip(&pts)
+                .map(|(p, q)| (p - q).norm())
+                .fold(0.0, f64::max);
+            if far > len.max(1e-3 * model.diagonal()) {
+                return Err(Error::input(
+                    at,
+                    format!(
+                        "the curve lies up to {far:.3e} from the model, more than its length \
+                         {len:.3e}: wrong coordinates, or faces missing from `faces`?"
+                    ),
+                ));
+            }
             Ok((pts, Snap::Model))
         }
         CurveSpec::Iso {
