@@ -477,3 +477,70 @@ fn verify_passes_on_the_step_model_block() {
     assert!(p > 1.8, "observed order {p}: {b}");
     assert_eq!(b["parametrization"]["pass"], true, "{b}");
 }
+
+/// Two blocks on the wing–pylon model side by side (fore and aft of x = 1), given the same
+/// edge x = 1 between them: its nodes are the same in both (to rounding) and the `.conn` file
+/// lists that 1-to-1 interface, every other side a patch of its block.
+#[test]
+fn blocks_on_a_model_sharing_an_edge_are_joined() {
+    let d = tempfile::tempdir().unwrap();
+    let step = root().join("data/step/wing_pylon.step");
+    let w1 = shape::pylon_half_width(1.0);
+    let block = |name: &str, x0: f64, y0: f64, x1: f64, y1: f64| {
+        format!(
+            r#"[[block]]
+name = "{name}"
+kind = "surface"
+ni = 41
+nj = 33
+surface = {{ type = "step", file = "{step}", faces = [1, 2], along = [0, 0, 1] }}
+[block.E1]
+curve = {{ type = "line", from = [{x0}, {y0}, 0], to = [{x0}, 1.0, 0] }}
+distribution = {{ type = "vinokur", first = 2e-3 }}
+[block.E2]
+curve = {{ type = "line", from = [{x1}, {y1}, 0], to = [{x1}, 1.0, 0] }}
+distribution = {{ type = "vinokur", first = 2e-3 }}
+[block.E3]
+curve = {{ type = "intersection", face = 4, from = [{x0}, {y0}, -0.09], to = [{x1}, {y1}, -0.05] }}
+[block.E4]
+curve = {{ type = "line", from = [{x0}, 1.0, 0], to = [{x1}, 1.0, 0] }}
+"#,
+            step = step.display()
+        )
+    };
+    let case = format!(
+        "{}\n{}",
+        block("fore", 0.2, 0.0, 1.0, w1),
+        block("aft", 1.0, w1, 1.8, shape::pylon_half_width(1.8))
+    );
+    std::fs::write(d.path().join("two.toml"), case).unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &["run", "two.toml", "-o", "two.x", "-o", "two.conn"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let f = read_plot3d(&d.path().join("two.x")).unwrap();
+    let [Block::Surface(a), Block::Surface(b)] = &f.blocks[..] else {
+        panic!("two surface blocks")
+    };
+    for j in 0..33 {
+        let (p, q) = (a.point(40, j), b.point(0, j));
+        let gap = (0..3).map(|c| (p[c] - q[c]).abs()).fold(0.0, f64::max);
+        assert!(gap < 1e-12, "node {j} of the shared edge: {p:?} {q:?}");
+    }
+    let conn = std::fs::read_to_string(d.path().join("two.conn")).unwrap();
+    let lines: Vec<&str> = conn.lines().collect();
+    assert_eq!(lines[0].trim(), "1", "{conn}");
+    let words = |l: &str| l.split_whitespace().map(String::from).collect::<Vec<_>>();
+    assert_eq!(
+        words(lines[1]),
+        ["1", "41", "1", "1", "41", "33", "1"],
+        "{conn}"
+    );
+    assert_eq!(
+        words(lines[2]),
+        ["2", "1", "1", "1", "1", "33", "1"],
+        "{conn}"
+    );
+    assert_eq!(lines[3].trim(), "6", "{conn}");
+}

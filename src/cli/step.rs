@@ -5,14 +5,13 @@
 use clap::{Args, Subcommand};
 use ellipgrid::cad::{self, Route, StepFace};
 use ellipgrid::case::DistributionSpec;
-use ellipgrid::grid::matching::matching_sides;
 use ellipgrid::grid::Edge;
 use ellipgrid::io::connectivity::{self, ConnFile};
 use ellipgrid::io::plot3d::{self, Plot3dFormat};
 use ellipgrid::io::Block;
 use ellipgrid::job::MeshOptions;
 use ellipgrid::quality::quality3d::AnyQuality;
-use ellipgrid::{job, solve, Error, Grid2, Result};
+use ellipgrid::{job, solve, Error, Result};
 use ellipgrid_geometry::{HermiteSurface, Vec3};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -483,32 +482,13 @@ fn grid(a: &GridArgs) -> Result<()> {
 /// Relative tolerance (of the grids' bounding-box diagonal) within which block sides of the
 /// written faces count as one 1-to-1 interface: a face's cuts are shared bit for bit, faces
 /// that share a CAD edge match when they put the same nodes on it.
-const MATCH_TOLERANCE: f64 = 1e-9;
-
 /// The connectivity of the written face blocks (`.conn`, and the families of the solver
 /// meshes): interfaces where block sides coincide node for node, every other side a patch of
 /// its face's family `face<N>`.
 fn face_connectivity(blocks: &[(String, Block)]) -> ConnFile {
-    let (grids, family): (Vec<&Grid2<3>>, Vec<String>) = blocks
-        .iter()
-        .filter_map(|(name, b)| match b {
-            Block::Surface(g) => Some((g, name.split('.').next().unwrap_or(name).to_string())),
-            _ => None,
-        })
-        .unzip();
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for g in &grids {
-        for (c, x) in g.coords().iter().enumerate() {
-            for v in x {
-                lo[c] = lo[c].min(*v);
-                hi[c] = hi[c].max(*v);
-            }
-        }
-    }
-    let diag = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
-    let matches = matching_sides(&grids, MATCH_TOLERANCE * diag);
-    let dims: Vec<[usize; 2]> = grids.iter().map(|g| [g.ni(), g.nj()]).collect();
-    connectivity::from_matches(&dims, &matches, &family)
+    connectivity::of_surface_blocks(blocks, |name| {
+        name.split('.').next().unwrap_or(name).to_string()
+    })
 }
 
 /// Writes block `block` of the control-net file `net` (every block if `None`) as bicubic

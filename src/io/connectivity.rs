@@ -171,6 +171,40 @@ pub fn from_topology3(topo: &Topology3) -> ConnFile {
     out
 }
 
+/// Relative tolerance (of the blocks' box diagonal) within which block sides gridded apart
+/// count as the same nodes ([`of_surface_blocks`]).
+pub const MATCH_TOLERANCE: f64 = 1e-9;
+
+/// The connectivity of surface blocks gridded apart (a STEP file's face blocks, blocks on a
+/// STEP model): interfaces where sides coincide node for node within [`MATCH_TOLERANCE`] of
+/// the blocks' diagonal, every other side a patch of the family `family(name)` of its block.
+/// Other blocks are left out.
+pub fn of_surface_blocks(
+    blocks: &[(String, crate::io::Block)],
+    family: impl Fn(&str) -> String,
+) -> ConnFile {
+    let (grids, families): (Vec<&crate::grid::Grid2<3>>, Vec<String>) = blocks
+        .iter()
+        .filter_map(|(name, b)| match b {
+            crate::io::Block::Surface(g) => Some((g, family(name))),
+            _ => None,
+        })
+        .unzip();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for g in &grids {
+        for (c, x) in g.coords().iter().enumerate() {
+            for v in x {
+                lo[c] = lo[c].min(*v);
+                hi[c] = hi[c].max(*v);
+            }
+        }
+    }
+    let diag = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+    let matches = crate::grid::matching::matching_sides(&grids, MATCH_TOLERANCE * diag);
+    let dims: Vec<[usize; 2]> = grids.iter().map(|g| [g.ni(), g.nj()]).collect();
+    from_matches(&dims, &matches, &families)
+}
+
 /// The connectivity of 2D blocks gridded apart, from the pairs of their sides that coincide
 /// ([`crate::grid::matching::matching_sides`]): those are the interfaces, every other side a
 /// patch of its block's family `family[block]` (families numbered in order of first use).

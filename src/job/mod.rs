@@ -277,6 +277,7 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
         volumes.push(rep);
         blocks.push((name, block));
     }
+    let connectivity = connectivity(case).or_else(|| model_connectivity(case, &blocks));
     Ok(Generated {
         blocks,
         report: RunReport {
@@ -289,8 +290,18 @@ pub fn generate(case: &LoadedCase, mut progress: impl FnMut(&BlockReport)) -> Re
             outputs: vec![],
         },
         topology: case.topology.clone(),
-        connectivity: connectivity(case),
+        connectivity,
     })
+}
+
+/// The connectivity of blocks on a STEP model gridded apart (a case without topology whose
+/// blocks include one on a STEP model): interfaces where their sides coincide node for node
+/// (blocks given the same edge get the same nodes on it), every other side a patch of the
+/// block's own family, named after it.
+fn model_connectivity(case: &LoadedCase, blocks: &[(String, Block)]) -> Option<ConnFile> {
+    let any = (0..case.case.blocks.len()).any(|k| case.is_model_block(k));
+    (any && case.topology3.is_none())
+        .then(|| crate::io::connectivity::of_surface_blocks(blocks, |name| name.to_string()))
 }
 
 /// The connectivity of a multi-block case (2D or volume topology), if it has one.

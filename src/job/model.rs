@@ -39,6 +39,8 @@ pub struct ModelBlock {
     pub model: ModelLocator,
     /// The face each edge (E1..E4) is the junction with, if it is one.
     pub junctions: [Option<ModelLocator>; 4],
+    /// The corners where the edges meet: (0, 0), (1, 0), (0, 1), (1, 1) in (i, j).
+    pub corners: [Vec3; 4],
 }
 
 /// Where projected edges go onto the model: along a direction, else to the closest point.
@@ -143,7 +145,7 @@ pub fn model_block(case: &LoadedCase, k: usize) -> Result<ModelBlock> {
         }
         edges.push((pts, snap));
     }
-    meet_at_corners(&onto, &mut edges, &place)?;
+    let corners = meet_at_corners(&onto, &mut edges, &place)?;
     let [ni, nj] = case.block_dims(k);
     let [m, n] = net.unwrap_or([ni, nj]);
     if m < 4 || n < 4 {
@@ -182,6 +184,7 @@ pub fn model_block(case: &LoadedCase, k: usize) -> Result<ModelBlock> {
         uv,
         model,
         junctions,
+        corners,
     })
 }
 
@@ -310,7 +313,7 @@ fn step_face<'a>(step: &'a [cad::StepFace], n: usize, at: &str) -> Result<&'a ca
 /// (1, 0), E1 and E4 at (0, 1), E2 and E4 at (1, 1). An exact edge's end wins; two projected
 /// ends meet at their mean's projection; each projected edge is then shifted along itself
 /// (linearly in arclength, then back onto the model) so that its ends are the corners.
-fn meet_at_corners(onto: &Onto, edges: &mut [(Vec<Vec3>, Snap)], place: &str) -> Result<()> {
+fn meet_at_corners(onto: &Onto, edges: &mut [(Vec<Vec3>, Snap)], place: &str) -> Result<[Vec3; 4]> {
     let len = |p: &[Vec3]| p.windows(2).map(|w| (w[1] - w[0]).norm()).sum::<f64>();
     let names = ["E1", "E2", "E3", "E4"];
     // (edge, at its end?) pairs of each corner
@@ -322,6 +325,7 @@ fn meet_at_corners(onto: &Onto, edges: &mut [(Vec<Vec3>, Snap)], place: &str) ->
     ];
     let end = |e: &(Vec<Vec3>, Snap), last: bool| if last { *e.0.last().unwrap() } else { e.0[0] };
     let mut corner = [[None::<Vec3>; 2]; 4]; // per edge: start, end
+    let mut corners = Vec::with_capacity(4);
     for ((a, la), (b, lb)) in pairs {
         let (pa, pb) = (end(&edges[a], la), end(&edges[b], lb));
         let gap = (pa - pb).norm();
@@ -356,6 +360,7 @@ fn meet_at_corners(onto: &Onto, edges: &mut [(Vec<Vec3>, Snap)], place: &str) ->
         };
         corner[a][la as usize] = Some(c);
         corner[b][lb as usize] = Some(c);
+        corners.push(c);
     }
     for (e, (pts, snap)) in edges.iter_mut().enumerate() {
         let [Some(c0), Some(c1)] = corner[e] else {
@@ -382,7 +387,7 @@ fn meet_at_corners(onto: &Onto, edges: &mut [(Vec<Vec3>, Snap)], place: &str) ->
         pts[0] = c0;
         *pts.last_mut().unwrap() = c1;
     }
-    Ok(())
+    Ok([corners[0], corners[1], corners[2], corners[3]])
 }
 
 /// `count` points at uniform arclength along the dense polyline, back on the edge's curve;
@@ -435,11 +440,28 @@ pub fn onto_model(grid: &mut Grid2<3>, block: &ModelBlock) -> super::SurfaceDist
             let p = at(g, q);
             let (i, j) = (q % ni, q / ni);
             // the junction edge this node lies on, and its neighbours along the edge
+            // the corners are the edges' meeting points, kept exactly (so that blocks sharing
+            // a corner share it bit for bit)
+            let corner = [(0, 0), (ni - 1, 0), (0, nj - 1), (ni - 1, nj - 1)]
+                .iter()
+                .position(|c| *c == (i, j));
+            if let Some(c) = corner {
+                return (block.corners[c], (block.corners[c] - p).norm());
+            }
+            // neighbours along each side, within the side
+            let (ip, inx) = (
+                if i > 0 { q - 1 } else { q },
+                if i + 1 < ni { q + 1 } else { q },
+            );
+            let (jp, jn) = (
+                if j > 0 { q - ni } else { q },
+                if j + 1 < nj { q + ni } else { q },
+            );
             let on = [
-                (i == 0, q.saturating_sub(ni), (q + ni).min(g.len() - 1)),
-                (i == ni - 1, q.saturating_sub(ni), (q + ni).min(g.len() - 1)),
-                (j == 0, q.saturating_sub(1), (q + 1).min(g.len() - 1)),
-                (j == nj - 1, q.saturating_sub(1), (q + 1).min(g.len() - 1)),
+                (i == 0, jp, jn),
+                (i == ni - 1, jp, jn),
+                (j == 0, ip, inx),
+                (j == nj - 1, ip, inx),
             ];
             let snapped = on
                 .iter()
