@@ -50,24 +50,7 @@ impl<S: Surface> SurfaceLocator<S> {
             )));
         }
         let boxes: Vec<[f64; 6]> = (0..nu * nv)
-            .map(|c| {
-                let corners = Self::corners_of(&pts, nu, c);
-                let mut b = [
-                    f64::INFINITY,
-                    f64::INFINITY,
-                    f64::INFINITY,
-                    -f64::INFINITY,
-                    -f64::INFINITY,
-                    -f64::INFINITY,
-                ];
-                for p in corners {
-                    for d in 0..3 {
-                        b[d] = b[d].min(p[d]);
-                        b[d + 3] = b[d + 3].max(p[d]);
-                    }
-                }
-                b
-            })
+            .map(|c| cell_box(Self::corners_of(&pts, nu, c)))
             .collect();
         let tree = BoxTree::new(&boxes)?;
         Ok(SurfaceLocator {
@@ -135,6 +118,26 @@ impl<S: Surface> SurfaceLocator<S> {
         };
         project(&self.surface, p, start).unwrap_or(start)
     }
+}
+
+/// The bounding box [min x, min y, min z, max x, max y, max z] of a cell's corners (a
+/// [`BoxTree`] box).
+pub(super) fn cell_box(corners: impl IntoIterator<Item = Vec3>) -> [f64; 6] {
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::INFINITY,
+        -f64::INFINITY,
+        -f64::INFINITY,
+        -f64::INFINITY,
+    ];
+    for p in corners {
+        for d in 0..3 {
+            b[d] = b[d].min(p[d]);
+            b[d + 3] = b[d + 3].max(p[d]);
+        }
+    }
+    b
 }
 
 /// Closest point to p on triangle (a, b, c) and its barycentric coordinates (Ericson,

@@ -4,7 +4,7 @@
 //! nearest sampled triangle picks the surface and the start, Newton ([`project_within`])
 //! finishes. The block faces that are not CAD faces (issue #14) live on such a model.
 
-use super::locate::closest_on_triangle;
+use super::locate::{cell_box, closest_on_triangle};
 use super::{project_within, Surface};
 use crate::{BoxTree, GeometryError, Vec3};
 
@@ -91,20 +91,7 @@ impl ModelLocator {
                 }
             }
             for c in 0..(s.ni - 1) * (s.nj - 1) {
-                let mut b = [
-                    f64::INFINITY,
-                    f64::INFINITY,
-                    f64::INFINITY,
-                    -f64::INFINITY,
-                    -f64::INFINITY,
-                    -f64::INFINITY,
-                ];
-                for n in corners(s.ni, c) {
-                    for d in 0..3 {
-                        b[d] = b[d].min(s.x[n][d]);
-                        b[d + 3] = b[d + 3].max(s.x[n][d]);
-                    }
-                }
+                let b = cell_box(corners(s.ni, c).map(|n| s.x[n]));
                 cells.push((k, c));
                 cell_boxes.push(b);
             }
