@@ -130,6 +130,12 @@ pub fn trace_intersection(
                 pts.pop();
             }
             pts.push(end);
+            if pts.len() < 2 {
+                return Err(err(
+                    "the junction's points nearest `from` and `to` coincide: it has no length"
+                        .into(),
+                ));
+            }
             return Ok(pts);
         }
         let s = step.min(0.5 * left.max(step / 1.5));
@@ -192,6 +198,15 @@ mod tests {
             "{len}"
         );
         assert!(pts.windows(2).all(|w| (w[1] - w[0]).norm() <= 0.0101));
+        // ends whose junction points coincide (1e-9 apart, steps of 0.01): no curve
+        let e = trace_intersection(
+            &sphere,
+            &plane,
+            Vec3::new(r, -1e-9, 0.5),
+            Vec3::new(r, 1e-9, 0.5),
+            0.01,
+        );
+        assert!(format!("{e:?}").contains("no length"), "{e:?}");
         // the plane z = 2 does not meet the sphere
         let high = |p: Vec3| Some((Vec3::new(p.x, p.y, 2.0), Vec3::new(0.0, 0.0, 1.0)));
         let e = trace_intersection(
