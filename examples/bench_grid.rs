@@ -2,7 +2,10 @@
 //! with the sparse direct solver.
 //!
 //! `cargo run --release --example bench_grid -- [--quick] [--sizes 257,513] [--only curved|bl-1e-5]
-//! [--no-plain] [--no-linear] [--newton] [--history]`
+//! [--no-plain] [--no-linear] [--newton] [--history] [--levels]`
+//!
+//! `--levels` prints each nested level's steps and seconds (where a whole generation's time
+//! goes).
 //!
 //! `--write DIR` writes every computed grid (or solution) as raw f64 for `scripts/same-grids.sh`.
 //!
@@ -170,6 +173,14 @@ fn whole(
         info.work_unit_seconds * 1e3,
         r.picard.final_residual,
     );
+    if std::env::args().any(|a| a == "--levels") {
+        for l in &info.levels {
+            println!(
+                "    level {:?}: {} steps, {:.3} s",
+                l.dims, l.steps, l.seconds
+            );
+        }
+    }
     if std::env::args().any(|a| a == "--history") {
         for st in &r.picard.history {
             println!(

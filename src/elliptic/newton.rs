@@ -326,9 +326,9 @@ fn scaled_residual<S: NewtonSystem>(sys: &mut S, buf: &mut Buffers) {
     let lin = sys.linear();
     for (c, rc) in lin.r.iter().enumerate() {
         let out = &mut buf.rhs[c * n..(c + 1) * n];
-        out.iter_mut()
-            .zip(rc)
-            .zip(&buf.scale)
+        out.par_iter_mut()
+            .zip(rc.par_iter())
+            .zip(buf.scale.par_iter())
             .for_each(|((o, r), s)| *o = r * s);
     }
 }
@@ -354,7 +354,7 @@ fn krylov<S: NewtonSystem>(
     let scale = &*scale;
     let failed: Mutex<Option<SolveError>> = Mutex::new(None);
     if from_zero {
-        delta.fill(0.0);
+        crate::solve::par_fill(delta, 0.0);
     }
     let ctl = SolveControl {
         max_iter: KRYLOV_MAX,

@@ -18,6 +18,7 @@ use crate::elliptic::newton::{self, NewtonSystem};
 use crate::elliptic::picard::{self, Nonlinear, PicardInfo, PicardParams};
 use crate::grid::boundary::Boundary2;
 use crate::grid::Grid2;
+use crate::solve::multigrid::use_par;
 use crate::solve::stencil9::Stencil9;
 use crate::solve::{LinearSolver, SolveError};
 use crate::Result;
@@ -85,7 +86,7 @@ pub fn assemble<const D: usize>(
         });
     // Known boundary neighbours go to the right-hand side (rows next to the boundary only).
     for b in rhs.iter_mut() {
-        b.fill(0.0);
+        crate::solve::par_fill(b, 0.0);
     }
     let coefs = a.coefs_mut();
     let mut row = |ii: usize, jj: usize| {
@@ -186,11 +187,19 @@ fn residual_scaled<const D: usize>(
 }
 
 fn add_interior(inner: &[f64], ni: usize, nx: usize, full: &mut [f64]) {
-    for (jj, row) in inner.chunks(nx).enumerate() {
-        let base = ni * (jj + 1) + 1;
-        for (f, d) in full[base..base + nx].iter_mut().zip(row) {
+    let add = |(row, d): (&mut [f64], &[f64])| {
+        for (f, d) in row[1..=nx].iter_mut().zip(d) {
             *f += d;
         }
+    };
+    // grid row jj + 1 holds interior row jj at columns 1..=nx
+    let rows = &mut full[ni..ni * (inner.len() / nx + 1)];
+    if use_par(inner.len()) {
+        rows.par_chunks_mut(ni)
+            .zip(inner.par_chunks(nx))
+            .for_each(add);
+    } else {
+        rows.chunks_mut(ni).zip(inner.chunks(nx)).for_each(add);
     }
 }
 

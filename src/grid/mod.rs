@@ -177,7 +177,15 @@ impl<const D: usize> Grid2<D> {
 
     /// True if every coordinate is finite.
     pub fn all_finite(&self) -> bool {
-        self.coords.iter().all(|c| c.iter().all(|v| v.is_finite()))
+        use rayon::prelude::*;
+        let finite = |ch: &[f64]| ch.iter().all(|v| v.is_finite());
+        self.coords.iter().all(|c| {
+            if crate::solve::multigrid::use_par(c.len()) {
+                c.par_chunks(8192).all(finite)
+            } else {
+                finite(c)
+            }
+        })
     }
 }
 

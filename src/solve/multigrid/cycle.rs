@@ -59,15 +59,7 @@ impl Workspace {
     pub(super) fn refit(&mut self, h: &Hierarchy) {
         // a buffer too small goes before its replacement is allocated (a reallocation may
         // hold both at once)
-        let fit = |v: &mut Vec<f64>, len: usize| {
-            if v.capacity() < len {
-                *v = Vec::new();
-                *v = vec![0.0; len];
-            } else {
-                v.clear();
-                v.resize(len, 0.0);
-            }
-        };
+        let fit = |v: &mut Vec<f64>, len: usize| crate::solve::zeroed(v, len);
         self.lv.truncate(h.levels.len());
         for (k, l) in h.levels.iter().enumerate() {
             let len = padded_len(l.nx, l.ny);
@@ -191,7 +183,7 @@ impl Hierarchy {
             let (fine, coarse) = lv.split_at_mut(l + 1);
             let (v, vc) = (&fine[l], &mut coarse[0]);
             interp::restrict(interp::restriction(&lev.p, &lev.r), nx, ny, &v.r, &mut vc.b);
-            vc.x.fill(0.0);
+            crate::solve::par_fill(&mut vc.x, 0.0);
         }
         let coarsest_next = l + 2 == nl;
         match kind {

@@ -76,7 +76,9 @@ pub use krylov::bicgstab;
 pub use safe::MultigridSafe;
 
 use crate::solve::stencil9::Stencil9;
-use crate::solve::{stationary, LinearSolver, SolveControl, SolveError, SolveInfo};
+use crate::solve::{
+    par_copy, par_fill, stationary, LinearSolver, SolveControl, SolveError, SolveInfo,
+};
 use cycle::Workspace;
 use relax::{pad, residual, Zeroed};
 use serde::{Deserialize, Serialize};
@@ -427,10 +429,10 @@ impl Multigrid {
     /// `out ≈ A⁻¹ rhs` by one cycle from zero (padded vectors of the fine grid).
     fn precondition(&self, h: &Hierarchy, ws: &mut Workspace, rhs: &[f64], out: &mut [f64]) {
         let v = &mut ws.lv[0];
-        v.b.copy_from_slice(rhs);
-        v.x.fill(0.0);
+        par_copy(&mut v.b, rhs);
+        par_fill(&mut v.x, 0.0);
         h.cycle(0, h.params.cycle, &mut ws.lv, &mut ws.band);
-        out.copy_from_slice(&ws.lv[0].x);
+        par_copy(out, &ws.lv[0].x);
     }
 
     /// Plain multigrid cycles, in correction form: each cycle solves `A e = r` from `e = 0`
@@ -453,17 +455,17 @@ impl Multigrid {
         let mut ws = pool.take_refit(|ws| ws.fits(h), |ws| ws.refit(h), || Workspace::new(h));
         let res = {
             let v = &mut ws.lv[0];
-            v.b[pd..pd + n].copy_from_slice(b);
+            par_copy(&mut v.b[pd..pd + n], b);
             let r0 = if x.iter().all(|&xi| xi == 0.0) {
                 b.iter().map(|bi| bi * bi).sum::<f64>().sqrt()
             } else {
-                v.x[pd..pd + n].copy_from_slice(x);
+                par_copy(&mut v.x[pd..pd + n], x);
                 let r0 = residual(&l0.a, None, nx, ny, &v.x, &v.b, &mut v.r, Zeroed::None);
                 std::mem::swap(&mut v.b, &mut v.r);
                 r0.sqrt()
             };
             stationary(r0, ctl, || {
-                ws.lv[0].x.fill(0.0);
+                par_fill(&mut ws.lv[0].x, 0.0);
                 h.cycle(0, h.params.cycle, &mut ws.lv, &mut ws.band);
                 let v = &mut ws.lv[0];
                 relax::correct(&l0.a, nx, ny, &v.x, &mut v.b, x).sqrt()
@@ -534,10 +536,10 @@ impl LinearSolver for Multigrid {
         assert_eq!(x.len(), n, "multigrid: solution length");
         let mut ws = self.take_workspace(h);
         let v = &mut ws.lv[0];
-        v.b[pd..pd + n].copy_from_slice(b);
-        v.x.fill(0.0);
+        par_copy(&mut v.b[pd..pd + n], b);
+        par_fill(&mut v.x, 0.0);
         h.cycle(0, h.params.cycle, &mut ws.lv, &mut ws.band);
-        x.copy_from_slice(&ws.lv[0].x[pd..pd + n]);
+        par_copy(x, &ws.lv[0].x[pd..pd + n]);
         self.pool.put(ws);
         Ok(())
     }

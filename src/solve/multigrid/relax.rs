@@ -76,13 +76,8 @@ impl YLineOp {
 
     /// `n` zero rows, the buffers' capacity kept ([`super::setup::Hierarchy::recycled`]).
     pub(super) fn zeroed(&mut self, n: usize) {
-        if self.op.capacity() < n {
-            // freed before the new ones are allocated (a reallocation would hold both)
-            *self = YLineOp::default();
-        }
-        self.op.clear();
-        self.cp.clear();
-        self.resize(n);
+        crate::solve::zeroed(&mut self.op, n);
+        crate::solve::zeroed(&mut self.cp, n);
     }
 
     pub(super) fn is_empty(&self) -> bool {

@@ -8,11 +8,13 @@ use crate::solve::multigrid::coarse::BandLu;
 use crate::solve::multigrid::interp::{build_transfer, restriction};
 use crate::solve::multigrid::rap::galerkin;
 use crate::solve::multigrid::relax::{factor_y, Fac, YLineOp};
+use crate::solve::multigrid::use_par;
 use crate::solve::multigrid::xline::factor_x;
 use crate::solve::multigrid::yline;
 use crate::solve::multigrid::{MgParams, Restriction, Smoother};
 use crate::solve::stencil9::Stencil9;
-use crate::solve::SolveError;
+use crate::solve::{par_copy, zeroed, SolveError};
+use rayon::prelude::*;
 
 /// One grid of the hierarchy.
 #[derive(Clone, Debug, Default)]
@@ -128,8 +130,13 @@ impl Hierarchy {
     fn load_fine(&mut self, a: &Stencil9) -> Result<(), SolveError> {
         let l0 = &mut self.levels[0];
         assert_eq!((l0.nx, l0.ny), (a.nx(), a.ny()));
-        l0.a.clear();
-        l0.a.extend_from_slice(a.coefs());
+        if l0.a.len() == a.len() {
+            par_copy(&mut l0.a, a.coefs());
+        } else {
+            // written by the threads that copy (a fresh buffer's pages mapped by them)
+            l0.a.clear();
+            l0.a.par_extend(a.coefs().par_iter().copied());
+        }
         self.check_fine()
     }
 
@@ -250,9 +257,13 @@ fn clip(out: &mut [[f64; 9]], nx: usize, ny: usize) {
 
 /// The first unknown whose diagonal is zero or not finite.
 fn first_bad_diagonal(a: &[[f64; 9]], nx: usize) -> Option<(usize, usize)> {
-    a.iter()
-        .position(|m| !(m[4].is_finite() && m[4] != 0.0))
-        .map(|p| (p % nx, p / nx))
+    let bad = |m: &[f64; 9]| !(m[4].is_finite() && m[4] != 0.0);
+    if use_par(a.len()) {
+        a.par_iter().position_first(bad)
+    } else {
+        a.iter().position(bad)
+    }
+    .map(|p| (p % nx, p / nx))
 }
 
 impl Smoother {
@@ -263,14 +274,4 @@ impl Smoother {
     pub(super) fn uses_y(self) -> bool {
         !matches!(self, Smoother::ZebraLineX)
     }
-}
-
-/// `v` cleared and refilled with `n` default values (its capacity kept).
-fn zeroed<T: Copy + Default>(v: &mut Vec<T>, n: usize) {
-    if v.capacity() < n {
-        // freed before its replacement is allocated (a reallocation would hold both)
-        *v = Vec::new();
-    }
-    v.clear();
-    v.resize(n, T::default());
 }
