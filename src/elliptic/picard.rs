@@ -179,6 +179,11 @@ pub struct PicardStep {
     /// True for a Newton step ([`crate::elliptic::newton`]); absent for a Picard step.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub newton: bool,
+    /// The largest error of this Newton step's linear solve, relative to the diameter, where
+    /// it was measured (one preconditioner application to the solve's final residual: the
+    /// step the stop test would otherwise end on, `error_estimate`); absent elsewhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub linear_error: Option<f64>,
 }
 
 /// What the Picard iteration did: part of every result and report.
@@ -295,6 +300,8 @@ pub(crate) struct StepWork {
     pub update: f64,
     /// True if this was a Newton step.
     pub newton: bool,
+    /// [`PicardStep::linear_error`].
+    pub linear_error: Option<f64>,
 }
 
 /// One grid system's part of a Picard step: the 2D system [24]
@@ -431,6 +438,7 @@ pub(crate) fn run<S: System>(
                 solves,
                 update: sys.apply(largest),
                 newton: false,
+                linear_error: None,
             })
         },
         progress,
@@ -481,6 +489,7 @@ pub(crate) fn iterate(
         let mut record = step_record(work.residual, work.solves, place)?;
         record.update = work.update;
         record.newton = work.newton;
+        record.linear_error = work.linear_error;
         progress(step_no + 1, &record);
         history.push(record);
         if !work.update.is_finite() {
@@ -596,6 +605,7 @@ fn step_record(
         linear_iterations: Vec::with_capacity(infos.len()),
         linear_residual: Vec::with_capacity(infos.len()),
         newton: false,
+        linear_error: None,
     };
     for info in infos {
         let info = info.map_err(|source| Error::Solve {

@@ -52,6 +52,12 @@ impl GmresWorkspace {
     }
 
     /// Bytes held.
+    /// The residual `b − A x` of the last [`gmres`] solve with this workspace, at its
+    /// solution (each solve ends by computing it, whether it converged or not).
+    pub fn residual(&self) -> &[f64] {
+        &self.v[0]
+    }
+
     pub fn bytes(&self) -> usize {
         8 * (self.w.len() * (1 + self.v.len() + self.z.len()))
     }

@@ -11,6 +11,7 @@ fn history(rho: f64, steps: usize, eta: f64) -> Vec<PicardStep> {
             linear_iterations: vec![1],
             linear_residual: vec![eta],
             newton: false,
+            linear_error: None,
         })
         .collect()
 }
@@ -41,6 +42,7 @@ fn oscillating_update_norms_are_judged_by_their_mean_contraction() {
             linear_iterations: vec![1],
             linear_residual: vec![0.0],
             newton: false,
+            linear_error: None,
         })
         .collect();
     let grows = (3..60)
@@ -76,6 +78,7 @@ fn newton_history(k: f64, eta: f64, steps: usize) -> Vec<PicardStep> {
                 linear_iterations: vec![2],
                 linear_residual: vec![eta],
                 newton: true,
+                linear_error: None,
             };
             u = k * u * u + eta * u;
             h
@@ -119,6 +122,7 @@ fn quadratic_newton_updates_are_judged_by_their_quadratic_bound() {
             linear_iterations: vec![2],
             linear_residual: vec![eta],
             newton: true,
+            linear_error: None,
         })
         .collect();
     assert!(error_estimate(&h) < 1e-10 && contraction_estimate(&h) > 1e-10);
@@ -132,4 +136,31 @@ fn quadratic_newton_updates_are_judged_by_their_quadratic_bound() {
         })
         .collect();
     assert_eq!(error_estimate(&picard), contraction_estimate(&picard));
+}
+
+#[test]
+fn a_measured_linear_error_replaces_eta_times_the_update() {
+    // The folded start's fine level at 1025² with coarse levels stopped at 0.2 of their first
+    // update: η u gave a bound of 3.6e-11 where the grid was 2.1e-10 from the solution.
+    let steps = [(4.39e-6, 1.3e-2), (3.04e-7, 1.5e-2), (1.15e-8, 1.6e-3)];
+    let mut h: Vec<PicardStep> = steps
+        .iter()
+        .map(|&(update, eta)| PicardStep {
+            update,
+            residual: 0.0,
+            linear_iterations: vec![2],
+            linear_residual: vec![eta],
+            newton: true,
+            linear_error: None,
+        })
+        .collect();
+    let by_eta = error_estimate(&h);
+    assert!(by_eta < 1e-10, "{by_eta:e}");
+    // the measured linear error (11 η u) enters the bound instead, which then holds the error
+    h[2].linear_error = Some(2.0e-10);
+    let measured = error_estimate(&h);
+    assert!(measured > 2.0e-10 && measured < 2.5e-10, "{measured:e}");
+    // a measured error below η u lowers the bound (it is the better estimate)
+    h[2].linear_error = Some(1e-12);
+    assert!(error_estimate(&h) < by_eta);
 }
