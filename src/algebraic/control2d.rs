@@ -121,6 +121,11 @@ mod tests {
         let computed = Controls::computed([ni, nj], [pg.s.clone(), pg.t.clone()], node);
         assert!(computed.p.is_empty());
         assert_eq!(computed, stored);
+        assert!(computed.is_computed() && !stored.is_computed());
+        // stored once for Newton steps (poisson2d's linearize): the same values, bit for bit
+        let copy = computed.stored_copy();
+        assert!(!copy.is_computed());
+        assert_eq!(copy, computed);
         assert!(computed.all_finite());
         assert!(stored.at(3 + ni * 4).iter().all(|v| *v != 0.0));
         assert_eq!(computed.at(ni * 4), [0.0; 6], "zero on the boundary");
