@@ -67,6 +67,21 @@ fn a_fast_contraction_saves_the_confirming_step_and_growth_falls_back_to_the_upd
     assert_eq!(error_estimate(&h), h.last().unwrap().update);
 }
 
+/// Newton steps of the recorded (update, linear residual) pairs.
+fn newton_steps(steps: &[(f64, f64)]) -> Vec<PicardStep> {
+    steps
+        .iter()
+        .map(|&(update, eta)| PicardStep {
+            update,
+            residual: 0.0,
+            linear_iterations: vec![2],
+            linear_residual: vec![eta],
+            newton: true,
+            linear_error: None,
+        })
+        .collect()
+}
+
 /// Newton steps whose updates fall quadratically, u_{k+1} = K u_k² + η u_k.
 fn newton_history(k: f64, eta: f64, steps: usize) -> Vec<PicardStep> {
     let mut u = 0.3 / k;
@@ -114,17 +129,7 @@ fn quadratic_newton_updates_are_judged_by_their_quadratic_bound() {
         (3.077e-5, 8.29e-3),
         (3.214e-7, 9.30e-5),
     ];
-    let h: Vec<PicardStep> = steps
-        .iter()
-        .map(|&(update, eta)| PicardStep {
-            update,
-            residual: 0.0,
-            linear_iterations: vec![2],
-            linear_residual: vec![eta],
-            newton: true,
-            linear_error: None,
-        })
-        .collect();
+    let h = newton_steps(&steps);
     assert!(error_estimate(&h) < 1e-10 && contraction_estimate(&h) > 1e-10);
     assert!(error_estimate(&h) > 2.3e-11);
     // Picard steps with the same updates keep the contraction bound.
@@ -143,17 +148,7 @@ fn a_measured_linear_error_replaces_eta_times_the_update() {
     // The folded start's fine level at 1025² with coarse levels stopped at 0.2 of their first
     // update: η u gave a bound of 3.6e-11 where the grid was 2.1e-10 from the solution.
     let steps = [(4.39e-6, 1.3e-2), (3.04e-7, 1.5e-2), (1.15e-8, 1.6e-3)];
-    let mut h: Vec<PicardStep> = steps
-        .iter()
-        .map(|&(update, eta)| PicardStep {
-            update,
-            residual: 0.0,
-            linear_iterations: vec![2],
-            linear_residual: vec![eta],
-            newton: true,
-            linear_error: None,
-        })
-        .collect();
+    let mut h = newton_steps(&steps);
     let by_eta = error_estimate(&h);
     assert!(by_eta < 1e-10, "{by_eta:e}");
     // the measured linear error (11 η u) enters the bound instead, which then holds the error
