@@ -311,9 +311,10 @@ struct System2<'a, const D: usize> {
     /// The Jacobian's coupling (Newton's method only).
     coupling: Option<Coupling<D>>,
     /// Newton's preconditioner: the solvers of coordinates 1.. (`solver` serves coordinate
-    /// 0), each set up for its diagonal block A − G_cc of the Jacobian, and the operator
-    /// being set up; empty while the preconditioner is `solver` on A for every coordinate.
+    /// 0), each set up for its diagonal block A − G_cc of the Jacobian; empty while the
+    /// preconditioner is `solver` on A for every coordinate.
     own: Vec<Box<dyn LinearSolver>>,
+    /// The buffer of a block for solvers that copy it rather than take it over.
     scratch: Option<Stencil9>,
     /// True while the solvers hold the blocks A − G_cc (block Gauss–Seidel).
     blocks: bool,
@@ -364,27 +365,37 @@ impl<const D: usize> picard::System for System2<'_, D> {
 impl<const D: usize> System2<'_, D> {
     /// Sets up (or with `refresh` updates, [`LinearSolver::update`]) each coordinate's solver
     /// for its diagonal block A − G_cc of the Jacobian (`solver` for coordinate 0, `own` for
-    /// the others).
+    /// the others). Each block is written into the buffer its solver held the last one in and
+    /// handed over ([`LinearSolver::adopt`]): the multigrids' fine levels hold the only copies
+    /// (dented square at 1025²: no 75 MB scratch operator, and no copy of it per coordinate
+    /// and Newton step).
     fn load_blocks(&mut self, refresh: bool) -> std::result::Result<(), SolveError> {
         let cp = self
             .coupling
             .as_ref()
             .expect("linearize before the preconditioner");
-        let scratch = self
-            .scratch
-            .get_or_insert_with(|| Stencil9::zeros(self.a.nx(), self.a.ny()));
+        let (nx, ny) = (self.a.nx(), self.a.ny());
         for c in 0..D {
-            cp.own_operator(&self.a, c, scratch);
             let solver: &mut dyn LinearSolver = if c == 0 {
                 &mut *self.solver
             } else {
                 &mut *self.own[c - 1]
             };
-            if refresh {
-                solver.update(scratch)?;
-            } else {
-                solver.setup(scratch)?;
+            let fits = |s: &Stencil9| (s.nx(), s.ny()) == (nx, ny);
+            let mut op = match solver.give_back().filter(fits) {
+                Some(op) => op,
+                None => match self.scratch.take().filter(fits) {
+                    Some(op) => op,
+                    None => Stencil9::zeros(nx, ny),
+                },
+            };
+            cp.own_operator(&self.a, c, &mut op);
+            let res = solver.adopt(&mut op, refresh);
+            if !op.is_empty() {
+                // a solver that copies: the buffer serves the next block
+                self.scratch = Some(op);
             }
+            res?;
         }
         Ok(())
     }
