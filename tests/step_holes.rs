@@ -193,6 +193,60 @@ fn a_plane_face_with_one_hole_is_a_ring_of_four_fold_free_blocks() {
 }
 
 #[test]
+fn a_hole_that_cannot_see_a_corner_gets_corners_it_sees() {
+    // plane_lshape_hole.step (make_lshape_hole.py): the L-shaped plate's one-loop corners
+    // include (10, 7), which the hole at (3, 8.5) does not see past the reentrant vertex
+    // (7, 7): the straight cut to it crossed the plate's boundary ("the boundary intersects
+    // itself"). The ring's four corners are picked among the outer loop's points the hole
+    // sees instead (`cad::visible`): four fold-free blocks covering the plate.
+    let name = "plane_lshape_hole.step";
+    let in_plate = |x: [f64; 3]| {
+        let e = 1e-9;
+        let plate = x[0] > -e && x[1] > -e && x[0] < 10.0 + e && x[1] < 10.0 + e;
+        let notch = x[0] > 7.0 + e && x[1] > 7.0 + e;
+        let hole = (x[0] - 3.0).abs() < 0.5 - e && (x[1] - 8.5).abs() < 0.5 - e;
+        plate && !notch && !hole
+    };
+    let mut errs = Vec::new();
+    for n in [9, 17, 33] {
+        let gs = blocks(name, 1, (2 * n - 1, n));
+        assert_eq!(gs.len(), 4, "{name}");
+        let mut total = 0.0;
+        for (b, g) in gs.iter().enumerate() {
+            let g = &g.result.grid;
+            assert!(unfolded(g), "{name} block {b} ({n}): folded");
+            for p in 0..g.len() {
+                let x = node(g, p);
+                assert!(
+                    x[2].abs() < 1e-12,
+                    "{name} block {b}: node {p} off the plane"
+                );
+                assert!(
+                    in_plate(x),
+                    "{name} block {b}: node {p} {x:?} outside the face"
+                );
+            }
+            let (a, signed) = area(g, &|_| [0.0, 0.0, 1.0]);
+            assert!(signed > 0.999 * a, "{name} block {b}: normal inwards");
+            total += a;
+        }
+        errs.push((total - 90.0).abs() / 90.0);
+    }
+    // the plate's corners between nodes: the area converges (cut corners of O(h²) each)
+    assert!(errs[2] < 2e-3 && errs[2] < errs[0], "area errors {errs:?}");
+    // through the command line: the four blocks written, exit 0
+    let dir = tempfile::tempdir().unwrap();
+    let step = file(name);
+    let o = ellipgrid(
+        dir.path(),
+        &["step", "grid", step.to_str().unwrap(), "--all", "-o", "l.x"],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let written = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("l.x")).unwrap();
+    assert_eq!(written.blocks.len(), 4);
+}
+
+#[test]
 fn an_annulus_between_two_one_edge_circles_is_a_ring() {
     // washer.step: both loops are one closed circle edge; the rays from the hole's centre to
     // the outer loop's corners meet the hole where its polygon closes.

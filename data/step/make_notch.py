@@ -26,34 +26,46 @@ def write_polygon_face(name, pts, out, script, curve=None, coord="{:.2f}",
     LIFT(px, py) places a loop point in 3D (default: (px, py, 0))."""
 
     def line(add, k, a, b):
-        (ax, ay), (bx, by) = a, b
-        length = ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
-        p = add(f"CARTESIAN_POINT('',({coord.format(ax)},{coord.format(ay)},0.))")
-        d = add(f"DIRECTION('',({(bx - ax) / length!r},{(by - ay) / length!r},0.))")
-        v = add(f"VECTOR('',#{d},1.)")
-        return add(f"LINE('',#{p},#{v})")
+        return line_edge(add, a, b, coord)
 
     def bounds(add, placement):
         axis = placement[3]
         plane = surface(add, axis) if surface else add(f"PLANE('',#{axis})")
-        verts = []
-        for (px, py) in pts:
-            if lift:
-                q = ",".join(repr(c) for c in lift(px, py))
-                p = add(f"CARTESIAN_POINT('',({q}))")
-            else:
-                p = add(f"CARTESIAN_POINT('',({coord.format(px)},{coord.format(py)},0.))")
-            verts.append(add(f"VERTEX_POINT('',#{p})"))
-        oriented = []
-        n = len(pts)
-        for k in range(n):
-            c = (curve or line)(add, k, pts[k], pts[(k + 1) % n])
-            edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % n]},#{c},.T.)")
-            oriented.append(add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)"))
-        loop = add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oriented) + "))")
+        loop = polygon_loop(add, pts, coord, curve or line, lift)
         return [add(f"FACE_OUTER_BOUND('',#{loop},.T.)")], plane
 
     write_face_file(name, out, script, stamp, bounds)
+
+
+def polygon_loop(add, pts, coord, curve, lift=None):
+    """Adds the EDGE_LOOP through the points PTS (closed, in order) and returns its number:
+    a VERTEX_POINT per point (placed in 3D by LIFT(px, py), default (px, py, 0) with COORD
+    formatting), edge k from PTS[k] to the next along CURVE(add, k, a, b)."""
+    verts = []
+    for (px, py) in pts:
+        if lift:
+            q = ",".join(repr(c) for c in lift(px, py))
+            p = add(f"CARTESIAN_POINT('',({q}))")
+        else:
+            p = add(f"CARTESIAN_POINT('',({coord.format(px)},{coord.format(py)},0.))")
+        verts.append(add(f"VERTEX_POINT('',#{p})"))
+    oriented = []
+    n = len(pts)
+    for k in range(n):
+        c = curve(add, k, pts[k], pts[(k + 1) % n])
+        edge = add(f"EDGE_CURVE('',#{verts[k]},#{verts[(k + 1) % n]},#{c},.T.)")
+        oriented.append(add(f"ORIENTED_EDGE('',*,*,#{edge},.T.)"))
+    return add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oriented) + "))")
+
+
+def line_edge(add, a, b, coord="{:.2f}"):
+    """Adds a LINE from A to B in the plane z = 0 and returns its number."""
+    (ax, ay), (bx, by) = a, b
+    length = ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
+    p = add(f"CARTESIAN_POINT('',({coord.format(ax)},{coord.format(ay)},0.))")
+    d = add(f"DIRECTION('',({(bx - ax) / length!r},{(by - ay) / length!r},0.))")
+    v = add(f"VECTOR('',#{d},1.)")
+    return add(f"LINE('',#{p},#{v})")
 
 
 def write_face_file(name, out, script, stamp, bounds):

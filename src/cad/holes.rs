@@ -336,7 +336,14 @@ fn strips(
         forward: outer_ccw,
     };
     if nh == 1 {
-        let (c, _) = loops[0].corners(Some(1e-3));
+        let (mut c, _) = loops[0].corners(Some(1e-3));
+        // a corner behind a wall of the outer loop: corners the hole sees (only there, so
+        // every face whose cuts are clear keeps its blocks)
+        if super::visible::hidden(loops, polys, &c, scale)? {
+            if let Some(v) = super::visible::corners(loops, polys, scale, outer_ccw)? {
+                c = v;
+            }
+        }
         let c = if outer_ccw {
             c
         } else {

@@ -88,6 +88,7 @@ mod split;
 mod trim;
 mod units;
 mod unread;
+mod visible;
 mod write;
 
 pub use boundary_cuts::KINK_TURN;

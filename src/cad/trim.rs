@@ -468,7 +468,7 @@ impl<'a> FaceLoop<'a> {
     /// Whether the loop bends outwards (is concave) at a point inside an edge: the turn of
     /// its (u, v) at the point itself and at arclength ±1/(8 NS) of the edge (projected from
     /// the samples' (u, v)), else from the (u, v) samples next to it.
-    fn bends_out(&self, p: LoopPoint, ccw: bool) -> bool {
+    pub(in crate::cad) fn bends_out(&self, p: LoopPoint, ccw: bool) -> bool {
         let e = &self.edges[p.edge];
         let s = self.scale;
         let h = 1.0 / (8 * NS) as f64;
