@@ -12,8 +12,9 @@
 //! between strips.
 
 use super::hole_cuts::crossings;
-use super::holes::{at, centroid, locate, rings, Cut, Layout, Node, Part, Side};
+use super::holes::{locate, rings, Cut, Layout, Node, Part, Side};
 use super::trim::{FaceLoop, LoopPoint};
+use super::uv::{at, centroid};
 use std::f64::consts::{PI, TAU};
 
 /// Most central holes tried (largest (u, v) area first).

@@ -20,6 +20,7 @@
 
 use super::hole_cuts::{candidates, crossings, Strips};
 use super::trim::{FaceLoop, LoopPoint, NS};
+use super::uv::{at, centroid};
 
 /// A side of a block, from one of its corners to the next.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,23 +95,6 @@ pub(super) fn polygon(lp: &FaceLoop, scale: [f64; 2]) -> Vec<(LoopPoint, [f64; 2
         .collect()
 }
 
-pub(super) fn centroid(poly: &[(LoopPoint, [f64; 2])]) -> [f64; 2] {
-    let n = poly.len();
-    let (mut a, mut cx, mut cy) = (0.0, 0.0, 0.0);
-    for i in 0..n {
-        let (p, q) = (poly[i].1, poly[(i + 1) % n].1);
-        let c = p[0] * q[1] - q[0] * p[1];
-        a += c;
-        cx += (p[0] + q[0]) * c;
-        cy += (p[1] + q[1]) * c;
-    }
-    if a.abs() > 0.0 {
-        [cx / (3.0 * a), cy / (3.0 * a)]
-    } else {
-        poly[0].1
-    }
-}
-
 fn inside(poly: &[(LoopPoint, [f64; 2])], x: [f64; 2]) -> bool {
     let n = poly.len();
     let mut c = false;
@@ -123,12 +107,6 @@ fn inside(poly: &[(LoopPoint, [f64; 2])], x: [f64; 2]) -> bool {
         }
     }
     c
-}
-
-/// (u, v) of a loop point, scaled.
-pub(super) fn at(lp: &mut FaceLoop, p: LoopPoint, scale: [f64; 2]) -> Result<[f64; 2], String> {
-    let (_, w) = lp.sample(p, p, &[0.0])?;
-    Ok([w[0][0] * scale[0], w[0][1] * scale[1]])
 }
 
 /// The loop point on polygon segment `k` (to the next sample) where `f` of the scaled

@@ -88,6 +88,7 @@ mod split;
 mod trim;
 mod units;
 mod unread;
+mod uv;
 mod visible;
 mod write;
 

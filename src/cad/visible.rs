@@ -6,8 +6,8 @@
 //! the outer loop and the blocks' boundaries intersect; there the four corners are picked
 //! again among the outer loop's points visible from the hole's centroid.
 
-use super::holes::{at, centroid};
 use super::trim::{FaceLoop, LoopPoint};
+use super::uv::{at, centroid};
 use std::f64::consts::{PI, TAU};
 
 /// Least turning of a visible corner at a vertex (radians, 20°: as the strips' corners).
