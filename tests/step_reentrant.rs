@@ -149,6 +149,48 @@ fn an_l_shaped_face_is_cut_at_its_reentrant_vertex_into_two_fold_free_blocks() {
 }
 
 #[test]
+fn a_one_block_grid_with_a_zero_area_cell_is_cut_like_one_that_folds() {
+    // At 257 × 129 the L's one block meets a cell of zero area in its harmonic step (the
+    // untangled (u, v) grid next to the reentrant vertex): reported as a fold
+    // (`Error::Folded`), so `grid_face_blocks` cuts the face at its reentrant vertex, as it
+    // does where the one block folds. Through the command line as well: exit 0.
+    let faces = read_step_faces(&file("plane_lshape.step")).unwrap();
+    let d = DistributionSpec::Uniform {};
+    let one = grid_face(&faces[0], (257, 129), &d, &d, &mut DirectLu::new(), "l");
+    match &one {
+        Err(ellipgrid::Error::Folded { first, .. }) => {
+            assert!(first.contains("zero area"), "{first}")
+        }
+        other => panic!(
+            "the one block at 257 × 129: {:?}",
+            other.as_ref().map(|_| ())
+        ),
+    }
+    let gs = grid_face_blocks(&faces[0], (257, 129), &d, &d, &mut DirectLu::new(), "l")
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(gs.len(), 2);
+    assert!(gs.iter().all(|g| !g.quality.is_folded()));
+    let dir = tempfile::tempdir().unwrap();
+    let step = file("plane_lshape.step");
+    let o = ellipgrid(
+        dir.path(),
+        &[
+            "step",
+            "grid",
+            step.to_str().unwrap(),
+            "--all",
+            "--ni",
+            "257",
+            "--nj",
+            "129",
+            "-o",
+            "l.x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+}
+
+#[test]
 fn the_cut_blocks_of_the_l_are_less_skewed_than_its_untangled_block() {
     // As one block the L is fold-free only after untangling (its cells next to the reentrant
     // vertex skewed); it is not cut by `grid_face_blocks` (a fold-free face is never cut),

@@ -135,11 +135,15 @@ pub(crate) fn flux_rows<const D: usize>(g: &Grid2<D>, place: &str) -> Result<Vec
             let (eb, et) = (sub(xb, xa), sub(xd, xc));
             let (el, er) = (sub(xc, xa), sub(xd, xb));
             let (mxi, meta) = (avg(eb, et), avg(el, er));
-            let bad = || {
-                Error::input(
-                    place,
-                    format!("cell ({i}, {j}) is degenerate (zero area): no harmonic solve"),
-                )
+            // a cell of zero area is the limit of a fold: reported as one, so that callers
+            // that try other layouts of a folding grid (a CAD face's reentrant cut, other
+            // corners) try them here too
+            let bad = || Error::Folded {
+                place: place.to_string(),
+                count: 1,
+                first: format!(
+                    "cell ({i}, {j}), which is degenerate (zero area): no harmonic solve"
+                ),
             };
             // Half-faces: (edge vector, averaged vector, from corner, to corner, Δ_n coefs,
             // avg_t coefs). Normal to ξ: bottom (a→b), top (c→d); normal to η: left (a→c),
@@ -243,9 +247,10 @@ pub const DIRECT_FALLBACK: usize = 250_000;
 /// (`conds` in the order E1, E2, E3, E4). Returns s at every node (i fastest).
 ///
 /// # Errors
-/// [`Error::Input`] (naming `place` and the edge or cell) for a grid smaller than 3 × 3, Dirichlet
-/// data of the wrong length or not finite, Neumann on all edges, or a degenerate cell;
-/// [`Error::Solve`] if the linear solver fails or does not converge.
+/// [`Error::Input`] (naming `place` and the edge) for a grid smaller than 3 × 3, Dirichlet
+/// data of the wrong length or not finite, or Neumann on all edges; [`Error::Folded`] naming
+/// the first degenerate (zero-area) cell; [`Error::Solve`] if the linear solver fails or does
+/// not converge.
 pub fn solve_harmonic<const D: usize>(
     g: &Grid2<D>,
     conds: &[EdgeCondition; 4],
