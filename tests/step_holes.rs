@@ -237,10 +237,7 @@ fn a_hole_that_cannot_see_a_corner_gets_corners_it_sees() {
     // through the command line: the four blocks written, exit 0
     let dir = tempfile::tempdir().unwrap();
     let step = file(name);
-    let o = ellipgrid(
-        dir.path(),
-        &["step", "grid", step.to_str().unwrap(), "--all", "-o", "l.x"],
-    );
+    let o = step_grid_all(dir.path(), step.to_str().unwrap(), ("65", "49"), "l.x");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let written = ellipgrid::io::plot3d::read_plot3d(&dir.path().join("l.x")).unwrap();
     assert_eq!(written.blocks.len(), 4);

@@ -172,21 +172,7 @@ fn a_one_block_grid_with_a_zero_area_cell_is_cut_like_one_that_folds() {
     assert!(gs.iter().all(|g| !g.quality.is_folded()));
     let dir = tempfile::tempdir().unwrap();
     let step = file("plane_lshape.step");
-    let o = ellipgrid(
-        dir.path(),
-        &[
-            "step",
-            "grid",
-            step.to_str().unwrap(),
-            "--all",
-            "--ni",
-            "257",
-            "--nj",
-            "129",
-            "-o",
-            "l.x",
-        ],
-    );
+    let o = step_grid_all(dir.path(), step.to_str().unwrap(), ("257", "129"), "l.x");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
 }
 
