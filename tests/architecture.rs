@@ -2,7 +2,8 @@
 //! - the numerical folders (grid, algebraic, elliptic, solve, surface, quality) never read
 //!   files and never reach case tables, jobs, I/O, CAD, plots or the command line;
 //! - no circle of imports between modules (files), nor between the top-level folders;
-//! - source files stay under ~500 lines of code (tests and comments not counted).
+//! - source files stay under ~500 lines of code (tests and comments not counted);
+//! - docs/ARCHITECTURE.md names every module of a top-level folder (its files and subfolders).
 //!
 //! An import is a `crate::…` (or `super::…`) path in a module's non-test code, resolved to the
 //! longest module path that exists; `mod` and `pub use` re-export lines, and a module's use of
@@ -347,6 +348,47 @@ fn modules_stay_small() {
         }
     }
     assert!(big.is_empty(), "{}", big.join("\n"));
+}
+
+/// Every file and subfolder directly under a top-level folder of `src/` (but `mod.rs` and
+/// test modules) is named in docs/ARCHITECTURE.md as `` `name` `` (or `` `name/` ``), so that
+/// the map stays true as modules are added.
+#[test]
+fn the_architecture_map_names_every_module() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(root.join("docs/ARCHITECTURE.md")).unwrap();
+    let mut missing = Vec::new();
+    for folder in NUMERICS.iter().chain(PLUMBING.iter()) {
+        let dir = root.join("src").join(folder);
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            let name = if p.is_dir() {
+                p.file_name().unwrap().to_string_lossy().into_owned()
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                p.file_stem().unwrap().to_string_lossy().into_owned()
+            } else {
+                continue;
+            };
+            if name == "mod" || name == "tests" {
+                continue;
+            }
+            let named = [
+                format!("`{name}`"),
+                format!("`{name}/`"),
+                format!("`{name}:"),
+            ]
+            .iter()
+            .any(|k| doc.contains(k.as_str()));
+            if !named {
+                missing.push(format!("src/{folder}/{name}"));
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "docs/ARCHITECTURE.md does not name: {}",
+        missing.join(", ")
+    );
 }
 
 #[test]
