@@ -351,7 +351,7 @@ fn modules_stay_small() {
 }
 
 /// Every file and subfolder directly under a top-level folder of `src/` (but `mod.rs` and
-/// test modules) is named in docs/ARCHITECTURE.md as `` `name` `` (or `` `name/` ``), so that
+/// test modules) is named in docs/ARCHITECTURE.md as `` `name` `` (or `` `name/` ``, `` `name: ``), so that
 /// the map stays true as modules are added.
 #[test]
 fn the_architecture_map_names_every_module() {
