@@ -196,6 +196,7 @@ fn level_rules(multigrid: bool, stop: f64) -> Rules {
         (false, _) => Rules::stop(stop),
         (true, coarse) => Rules {
             relative_stop: if coarse { MULTIGRID_COARSE_STOP } else { 0.0 },
+            coarser_first: 0.0,
             forcing_ratio: MULTIGRID_FORCING_RATIO,
             small_change: MULTIGRID_SMALL_CHANGE,
         },

@@ -141,7 +141,7 @@ struct Buffers {
 pub(crate) fn run<S: NewtonSystem>(
     sys: &mut S,
     params: &PicardParams,
-    relative_stop: f64,
+    rules: picard::Rules,
     newton_now: bool,
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
@@ -179,7 +179,7 @@ pub(crate) fn run<S: NewtonSystem>(
     };
     let (history, converged) = picard::iterate(
         params,
-        picard::Rules::stop(relative_stop),
+        rules,
         place,
         |small, ctl, threshold| {
             let residual = match cached.take() {
@@ -253,7 +253,7 @@ pub(crate) fn run<S: NewtonSystem>(
                             // η u, the linear error itself (picard::error_estimate)
                             let r = update / last_update;
                             let eta = info.residual_history.last().copied().unwrap_or(0.0);
-                            let linear_error = if relative_stop == 0.0
+                            let linear_error = if rules.relative_stop == 0.0
                                 && prev_newton
                                 && lambda == 1.0
                                 && r < 0.5

@@ -311,7 +311,14 @@ pub fn solve<const D: usize>(
         fd: None,
     };
     let solved = if params.iteration(D) == Nonlinear::Newton {
-        newton::run(&mut sys, params, 0.0, false, place, &mut |_, _| {})
+        newton::run(
+            &mut sys,
+            params,
+            picard::Rules::stop(0.0),
+            false,
+            place,
+            &mut |_, _| {},
+        )
     } else {
         picard::run(
             &mut sys,

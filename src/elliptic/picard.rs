@@ -258,6 +258,11 @@ pub const SMALL_CHANGE: f64 = 1e-5;
 pub(crate) struct Rules {
     /// Stop (converged) once the update falls below this times the first update; 0: off.
     pub relative_stop: f64,
+    /// The first update of the next coarser level of nested iteration (0: none or not used):
+    /// where this level's first update is more than [`PREDICTED_SHARE`] of it, the next
+    /// level's start will be as far off, and `relative_stop` is raised in proportion
+    /// (`stop::stop_threshold`).
+    pub coarser_first: f64,
     /// The ratio c of the forcing term to the observed Picard contraction ([`forcing`]).
     pub forcing_ratio: f64,
     /// After a step whose update (relative to the diameter) was below this the linear solver
@@ -271,6 +276,7 @@ impl Rules {
     pub(crate) fn stop(relative_stop: f64) -> Self {
         Rules {
             relative_stop,
+            coarser_first: 0.0,
             forcing_ratio: FORCING_RATIO,
             small_change: SMALL_CHANGE,
         }
@@ -470,7 +476,6 @@ pub(crate) fn iterate(
     mut step: impl FnMut(bool, &SolveControl, f64) -> Result<StepWork>,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<(Vec<PicardStep>, bool)> {
-    let relative_stop = rules.relative_stop;
     let mut history: Vec<PicardStep> = Vec::new();
     for step_no in 0..params.max_steps {
         let small = history
@@ -483,7 +488,7 @@ pub(crate) fn iterate(
         let threshold = if history.is_empty() {
             f64::INFINITY
         } else {
-            stop_threshold(params, &history, relative_stop)
+            stop_threshold(params, &history, &rules)
         };
         let work = step(small, &ctl, threshold)?;
         let mut record = step_record(work.residual, work.solves, place)?;
@@ -507,12 +512,12 @@ pub(crate) fn iterate(
         // next one worse (folding_start: the fine level's first update doubled).
         let estimate = if params.anderson > 0 {
             history.last().map_or(f64::INFINITY, |h| h.update)
-        } else if relative_stop > 0.0 {
+        } else if rules.relative_stop > 0.0 {
             contraction_estimate(&history)
         } else {
             error_estimate(&history)
         };
-        if estimate < stop_threshold(params, &history, relative_stop) {
+        if estimate < stop_threshold(params, &history, &rules) {
             return Ok((history, true));
         }
     }

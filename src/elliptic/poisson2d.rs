@@ -234,7 +234,8 @@ pub(crate) fn solve_timed<const D: usize>(
     relative_stop: f64,
     place: &str,
 ) -> Result<(PicardInfo, f64)> {
-    solve_level(x, ctrl, solver, params, relative_stop, false, place)
+    let rules = picard::Rules::stop(relative_stop);
+    solve_level(x, ctrl, solver, params, rules, false, place)
 }
 
 /// [`solve_timed`] for a level of nested iteration: with `newton_now` (the coarser level took
@@ -245,7 +246,7 @@ pub(crate) fn solve_level<const D: usize>(
     ctrl: &Control2,
     solver: &mut dyn LinearSolver,
     params: &PicardParams,
-    relative_stop: f64,
+    rules: picard::Rules,
     newton_now: bool,
     place: &str,
 ) -> Result<(PicardInfo, f64)> {
@@ -274,23 +275,10 @@ pub(crate) fn solve_level<const D: usize>(
         blocks: false,
     };
     match params.iteration(D) {
-        Nonlinear::Picard => picard::run(
-            &mut sys,
-            params,
-            picard::Rules::stop(relative_stop),
-            place,
-            &mut |_, _| {},
-        ),
+        Nonlinear::Picard => picard::run(&mut sys, params, rules, place, &mut |_, _| {}),
         Nonlinear::Newton => {
             // the coupling is allocated by the first Newton step (`linearize`)
-            newton::run(
-                &mut sys,
-                params,
-                relative_stop,
-                newton_now,
-                place,
-                &mut |_, _| {},
-            )
+            newton::run(&mut sys, params, rules, newton_now, place, &mut |_, _| {})
         }
     }
 }

@@ -159,3 +159,37 @@ fn a_measured_linear_error_replaces_eta_times_the_update() {
     h[2].linear_error = Some(1e-12);
     assert!(error_estimate(&h) < by_eta);
 }
+
+#[test]
+fn a_coarse_stop_grows_with_the_ratio_of_the_first_updates() {
+    // a coarse level stopping at 3e-2 of its first update 1e-3 (tolerance 1e-10)
+    let params = PicardParams::default();
+    let h = history(0.1, 2, 0.0);
+    let h: Vec<PicardStep> = h
+        .into_iter()
+        .map(|s| PicardStep {
+            update: 1e-3 * s.update,
+            ..s
+        })
+        .collect();
+    let mut rules = Rules::stop(3e-2);
+    let plain = stop_threshold(&params, &h, &rules);
+    assert!((plain - 3e-5).abs() < 1e-18, "{plain}");
+    // the level below's first update four times this one's (second order): unchanged
+    rules.coarser_first = 4e-3;
+    assert_eq!(stop_threshold(&params, &h, &rules), plain);
+    // first updates falling by 0.6 per level: the stop raised to 0.6 / 0.3 = 2 times
+    rules.coarser_first = 1e-3 / 0.6;
+    let raised = stop_threshold(&params, &h, &rules);
+    assert!((raised - 6e-5).abs() < 1e-15, "{raised}");
+    // not falling at all (or growing): at most 1 / 0.3 times
+    for coarser in [1e-3, 5e-4] {
+        rules.coarser_first = coarser;
+        let most = stop_threshold(&params, &h, &rules);
+        assert!((most - 1e-4).abs() < 1e-15, "{most}");
+    }
+    // the finest level (no relative stop) stops at the tolerance whatever the trend
+    let mut finest = Rules::stop(0.0);
+    finest.coarser_first = 1e-3;
+    assert_eq!(stop_threshold(&params, &h, &finest), params.tolerance);
+}
