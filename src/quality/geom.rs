@@ -199,6 +199,38 @@ impl<'a> Nodes<'a> {
     }
 }
 
+/// The angle θ in [0°, 360°) of the direction (x, y) = (`cos_part`, `sin_part`) (0° for the
+/// zero vector): a corner's angle from its in-plane cosine part and its Jacobian.
+#[inline]
+pub(super) fn corner_angle(sin_part: f64, cos_part: f64) -> f64 {
+    let theta = sin_part.atan2(cos_part).to_degrees();
+    if theta < 0.0 {
+        theta + 360.0
+    } else {
+        theta
+    }
+}
+
+/// A value in [0, 4) that increases with [`corner_angle`] (the "diamond angle", one division
+/// instead of an arctangent): 1 − x/(|x| + |y|) for y ≥ 0, 3 + x/(|x| + |y|) below; 0 for the
+/// zero vector; NaN for a NaN component.
+#[inline]
+pub(super) fn pseudo_angle(sin_part: f64, cos_part: f64) -> f64 {
+    let r = cos_part.abs() + sin_part.abs();
+    if r == 0.0 {
+        return 0.0;
+    }
+    let t = cos_part / r;
+    // −0.0 counts as y ≥ 0, as atan2(−0.0, x) gives −0° or −180°, i.e. 0° or 180° here
+    if sin_part >= 0.0 {
+        1.0 - t
+    } else if sin_part < 0.0 {
+        3.0 + t
+    } else {
+        f64::NAN
+    }
+}
+
 /// Raw corner Jacobians ((x_{k+1} − x_k) × (x_{k−1} − x_k)) · n of a cell, k = 0..3.
 #[inline]
 pub(super) fn corner_jacobians(c: &[V3; 4], n: V3) -> [f64; 4] {
@@ -244,21 +276,26 @@ pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64, pole: Option<usize>) -> Cell
     let e: [V3; 4] = std::array::from_fn(|k| sub(c[(k + 1) % 4], c[k]));
     let l: [f64; 4] = std::array::from_fn(|k| norm(e[k]));
     let (mut jmin, mut jmax, mut smin) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
-    let (mut tmin, mut tmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    // the corners of smallest and largest angle, found by a pseudo-angle (one division)
+    // instead of an arctangent per corner: (pseudo-angle, sine part, cosine part)
+    let (mut lo, mut hi) = ((f64::INFINITY, 0.0, 0.0), (f64::NEG_INFINITY, 0.0, 0.0));
+    let mut nan_angle = false;
     let mut folded = false;
     // A cell edge of zero length on a block side collapsed to a pole: the cell is a
     // triangle; its two corners at the pole are one corner, between the edges to c[q+2]
     // and c[q+3].
     let pole = pole.filter(|&q| l[q] == 0.0);
     for k in 0..4 {
-        let (a, p) = match pole {
+        // the corner's two edges (indices into e and l)
+        let (ia, ip) = match pole {
             Some(q) if k == (q + 1) % 4 => continue,
-            Some(q) if k == q => (e[(q + 1) % 4], e[(q + 3) % 4]),
-            _ => (e[k], e[(k + 3) % 4]),
+            Some(q) if k == q => ((q + 1) % 4, (q + 3) % 4),
+            _ => (k, (k + 3) % 4),
         };
+        let (a, p) = (e[ia], e[ip]);
         let b = [-p[0], -p[1], -p[2]];
         let jac = s * dot(cross(a, b), n);
-        let ll = norm(a) * norm(b);
+        let ll = l[ia] * l[ip];
         let scaled = if ll == 0.0 {
             0.0
         } else {
@@ -269,17 +306,24 @@ pub(super) fn eval_cell(c: &[V3; 4], n: V3, s: f64, pole: Option<usize>) -> Cell
         let flat = ll > 0.0 && jac.abs() <= FLAT * ll && dot(a, b) < 0.0;
         // Written so that a NaN Jacobian counts as folded.
         folded |= jac.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) && !flat;
-        let mut theta = jac.atan2(c_ab).to_degrees();
-        if theta < 0.0 {
-            theta += 360.0;
+        let p = pseudo_angle(jac, c_ab);
+        nan_angle |= p.is_nan();
+        if p < lo.0 {
+            lo = (p, jac, c_ab);
+        }
+        if p > hi.0 {
+            hi = (p, jac, c_ab);
         }
         jmin = nmin(jmin, jac);
         jmax = nmax(jmax, jac);
         smin = nmin(smin, scaled);
-        tmin = nmin(tmin, theta);
-        tmax = nmax(tmax, theta);
     }
-    let skew = nmax((tmax - 90.0) / 90.0, (90.0 - tmin) / 90.0);
+    let skew = if nan_angle {
+        f64::NAN
+    } else {
+        let (tmin, tmax) = (corner_angle(lo.1, lo.2), corner_angle(hi.1, hi.2));
+        nmax((tmax - 90.0) / 90.0, (90.0 - tmin) / 90.0)
+    };
     let sides = l.iter().enumerate().filter(|&(k, _)| Some(k) != pole);
     let lmax = sides.clone().fold(0.0, |m: f64, (_, &v)| nmax(m, v));
     let lmin = sides.fold(f64::INFINITY, |m: f64, (_, &v)| nmin(m, v));

@@ -95,42 +95,54 @@ impl<const N: usize> CellStats<N> {
 /// Spacings along the grid lines of axis `a` of a grid of `dims` nodes whose node n is
 /// `point(n)`: (largest growth ratio of adjacent spacings, inverted to be ≥ 1 (1 without two
 /// adjacent spacings); shortest spacing; longest spacing). Segments from a node where
-/// `on_pole` holds (a side collapsed to a point) are left out.
+/// `on_pole` holds (a side collapsed to a point) are left out. Line by line, each spacing
+/// measured once.
 pub(super) fn lines<const N: usize>(
     dims: [usize; N],
     a: usize,
     point: impl Fn([usize; N]) -> V3 + Sync,
     on_pole: impl Fn([usize; N]) -> bool + Sync,
 ) -> (f64, f64, f64) {
-    // The spacing from node n to the next along a.
-    let h = |n: [usize; N]| {
-        let mut m = n;
-        m[a] += 1;
-        norm(sub(point(m), point(n)))
-    };
-    (0..dims.iter().product::<usize>())
+    let len = dims[a];
+    let start = (1.0, f64::INFINITY, f64::NEG_INFINITY);
+    if len < 2 || dims.contains(&0) {
+        return start;
+    }
+    let merge =
+        |u: (f64, f64, f64), v: (f64, f64, f64)| (nmax(u.0, v.0), nmin(u.1, v.1), nmax(u.2, v.2));
+    // one line per node with n[a] = 0
+    let count = dims.iter().product::<usize>() / len;
+    (0..count)
         .into_par_iter()
-        .map(|mut p| -> [usize; N] {
-            std::array::from_fn(|c| {
-                let v = p % dims[c];
-                p /= dims[c];
+        .map(|mut q| {
+            let mut n: [usize; N] = std::array::from_fn(|c| {
+                if c == a {
+                    return 0;
+                }
+                let v = q % dims[c];
+                q /= dims[c];
                 v
-            })
+            });
+            let mut acc = start;
+            let mut here = point(n);
+            // the spacing of the previous segment if it is counted
+            let mut prev: Option<f64> = None;
+            for k in 0..len - 1 {
+                let counted = !on_pole(n);
+                n[a] = k + 1;
+                let next = point(n);
+                let h = norm(sub(next, here));
+                if let Some(hp) = prev {
+                    acc.0 = nmax(acc.0, growth_ratio(hp, h));
+                }
+                if counted {
+                    acc.1 = nmin(acc.1, h);
+                    acc.2 = nmax(acc.2, h);
+                }
+                prev = counted.then_some(h);
+                here = next;
+            }
+            acc
         })
-        .filter(|n| n[a] + 1 < dims[a] && !on_pole(*n))
-        .map(|n| {
-            let hn = h(n);
-            let gr = if n[a] + 2 < dims[a] {
-                let mut m = n;
-                m[a] += 1;
-                growth_ratio(hn, h(m))
-            } else {
-                1.0
-            };
-            (gr, hn, hn)
-        })
-        .reduce(
-            || (1.0, f64::INFINITY, f64::NEG_INFINITY),
-            |u, v| (nmax(u.0, v.0), nmin(u.1, v.1), nmax(u.2, v.2)),
-        )
+        .reduce(|| start, merge)
 }

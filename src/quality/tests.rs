@@ -578,3 +578,51 @@ fn a_flat_corner_is_degenerate_not_folded_but_a_collapsed_one_folds() {
     assert_eq!(q.folded_cells, 0, "{q}");
     near(q.scaled_jacobian_min, 0.5f64.sqrt(), 1e-12);
 }
+
+/// The pseudo-angle that picks a cell's extreme corners orders directions exactly as their
+/// angles do, all the way round (the skewness takes the arctangent of those two corners only).
+#[test]
+fn the_pseudo_angle_orders_directions_as_their_angles() {
+    use crate::quality::geom::{corner_angle, pseudo_angle};
+    let mut dirs: Vec<(f64, f64)> = (0..720i32)
+        .map(|k| {
+            let t = (k as f64 * 0.5 + 0.123).to_radians();
+            let r = 10f64.powi(k % 7 - 3);
+            (r * t.sin(), r * t.cos())
+        })
+        .collect();
+    // the axes, signed zeros and the zero vector
+    dirs.extend([
+        (0.0, 1.0),
+        (1.0, 0.0),
+        (0.0, -1.0),
+        (-1.0, 0.0),
+        (-0.0, 2.0),
+        (-0.0, -2.0),
+        (0.0, 0.0),
+    ]);
+    for &(s1, c1) in &dirs {
+        for &(s2, c2) in &dirs {
+            let (a1, a2) = (corner_angle(s1, c1), corner_angle(s2, c2));
+            let (p1, p2) = (pseudo_angle(s1, c1), pseudo_angle(s2, c2));
+            if (a1 - a2).abs() > 1e-9 {
+                assert_eq!(a1 < a2, p1 < p2, "({s1}, {c1}) {a1}° vs ({s2}, {c2}) {a2}°");
+            }
+        }
+    }
+    assert_eq!(corner_angle(0.0, 0.0), 0.0);
+    assert!(pseudo_angle(f64::NAN, 1.0).is_nan() && pseudo_angle(1.0, f64::NAN).is_nan());
+}
+
+/// Spacings and growth ratios line by line: a grid whose i-spacings grow by 1.1 along every
+/// row and whose j-spacings are 0.5, 1.0, 0.25 (growth 2 and 4), the extremes over both.
+#[test]
+fn spacings_and_growth_ratios_along_the_lines() {
+    let ys = [0.0, 0.5, 1.5, 1.75];
+    let g = Grid2::<2>::from_fn(6, 4, |i, j| [(1.1f64.powi(i as i32) - 1.0) / 0.1, ys[j]]);
+    let r = quality2d(&g);
+    near(r.growth_i_max, 1.1, TOL);
+    near(r.growth_j_max, 4.0, TOL);
+    near(r.min_spacing, 0.25, TOL);
+    near(r.max_spacing, 1.1f64.powi(4), TOL);
+}
