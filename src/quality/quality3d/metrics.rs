@@ -38,6 +38,16 @@ fn corner_jacobian_min(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> f6
         .fold(f64::INFINITY, nmin)
 }
 
+/// The six faces of a cell as corner cycles of cell-corner numbers (bit 0 = i, 1 = j, 2 = k).
+const FACES: [[usize; 4]; 6] = [
+    [0, 2, 6, 4],
+    [1, 3, 7, 5],
+    [0, 1, 5, 4],
+    [2, 3, 7, 6],
+    [0, 1, 3, 2],
+    [4, 5, 7, 6],
+];
+
 /// Per-cell measures: (min corner Jacobian, min scaled Jacobian, skewness, aspect ratio), with
 /// the Jacobians multiplied by `sign`.
 ///
@@ -70,15 +80,6 @@ fn eval_cell(g: &Grid3, i: usize, j: usize, k: usize, sign: f64) -> [f64; 4] {
         jmin = nmin(jmin, jac);
         smin = nmin(smin, if l > 0.0 { jac / l } else { 0.0 });
     }
-    // The six faces as corner cycles of cell-corner numbers (bit 0 = i, 1 = j, 2 = k).
-    const FACES: [[usize; 4]; 6] = [
-        [0, 2, 6, 4],
-        [1, 3, 7, 5],
-        [0, 1, 5, 4],
-        [2, 3, 7, 6],
-        [0, 1, 3, 2],
-        [4, 5, 7, 6],
-    ];
     // the edge from corner p to its neighbour q on a face, and its length
     let edge = |p: usize, q: usize| -> (V, f64) {
         let a = (p ^ q).trailing_zeros() as usize;
@@ -475,16 +476,8 @@ mod tests {
                 ]
             });
             let x = cell_corners(&g, 0, 0, 0);
-            let faces = [
-                [0, 2, 6, 4],
-                [1, 3, 7, 5],
-                [0, 1, 5, 4],
-                [2, 3, 7, 6],
-                [0, 1, 3, 2],
-                [4, 5, 7, 6],
-            ];
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-            for f in faces {
+            for f in FACES {
                 for q in 0..4 {
                     let p = x[f[q]];
                     let th = angle(sub(x[f[(q + 1) % 4]], p), sub(x[f[(q + 3) % 4]], p));
