@@ -13,7 +13,8 @@
 //! wall (spacings that differ by orders of magnitude, as along a wake, interpolate evenly in
 //! their logarithm), d₀ the uncorrected grid's distances, and ψ a half cosine in the node index,
 //! 1 and flat at the wall (the first cells keep the side edges' growth) and 0 at [`FADE`] of the
-//! column. (The volumes fade in the wall-normal parameter instead, ψ = (1 − v)³; on the RAE2822
+//! column. (The volumes fade in the wall-normal parameter instead,
+//! [`crate::elliptic::wall::BLEND_POWER`]; with their former ψ = (1 − v)³ on the RAE2822
 //! C-grid that carried the correction far out and bent the lines across the trailing-edge cuts
 //! by 11° on average.) Each pass remaps v ← v d_goal / d along every interior column, recomputes
 //! the control functions [19] of the remapped parameters and re-solves [24] from the current
