@@ -88,7 +88,7 @@ pub fn remap(v: f64, r: f64) -> f64 {
     v * r.powf(fade_weight(v))
 }
 
-/// The exponent q of the goal blend ψ = max((1 − v₀)^q, e^{−(v₀/a)²}) ([`blend_targets`]):
+/// The exponent q of the goal blend ψ = max((1 − v₀)^q, e^{−(v₀/a)²}) (the goals of each column):
 /// the edges' profile holds near the wall, the elliptic grid beyond v₀ ≈ 1/q. It was (1 − v₀)³
 /// until 2026-11-28, which still gave the profile 73 % of the weight at v₀ = 0.1 (0.3 chord off
 /// the ONERA M6 wing): there the wing volumes followed the edges' interpolated profile rather
