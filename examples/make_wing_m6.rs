@@ -40,7 +40,7 @@
 //! about 2°. The spanwise steps at the tip match the steps beyond the 180° edges of the wing
 //! plane (below, "Along the span"): checkMesh finds no highly skewed face (it found 64, max
 //! skewness 5.35, with 1.2e-3 everywhere). Left: the kinks across the other faces between the
-//! volumes (means 57–69° at full size: those faces are gridded on their own before the
+//! volumes (means 50–63° at full size: those faces are gridded on their own before the
 //! volumes; README, "ONERA M6").
 
 /// The interior faces whose nodes float with the volumes (`interface = "floating"`): the wake
