@@ -54,9 +54,9 @@ def case_dir(path):
 
 # Wall spacings of 1e-5 chord carried along a flat wall or a wake give in-plane aspect ratios
 # (OpenFOAM's: the ratio of the Cartesian extents) of thousands: allowed where the case design
-# still has them (README, "Solver meshes"). rae2822_cgrid's wake grows its normal spacing
-# downstream, airfoil_wall has 385 nodes along its flat floor, nlr7301_flap smooth wake lines
-# and 0.5-chord cells at the outflow: they pass ("Mesh OK.").
+# still has them (docs/SOLVER_MESHES.md, "What the solvers' own tools say"). rae2822_cgrid's
+# wake grows its normal spacing downstream, airfoil_wall has 385 nodes along its flat floor,
+# nlr7301_flap smooth wake lines and 0.5-chord cells at the outflow: they pass ("Mesh OK.").
 HIGH_ASPECT = "***High aspect ratio cells found"
 
 # Checks that may fail, with the reason.
@@ -72,7 +72,7 @@ ALLOWED = {
     # Below 1000 there needs chordwise steps under 1000 x the wall spacing (0.011-0.014
     # chord over 0.1-0.4 chord; the mean step is 0.016), i.e. a chordwise distribution
     # clustered at mid-chord instead of at the leading and trailing edges (tests/wing_co.rs
-    # high_aspect_ratio_cells_are_..., README "Volume blocks"). No highly skewed face since
+    # high_aspect_ratio_cells_are_..., docs/WING_CO_BLOCK.md). No highly skewed face since
     # the cap's last step matches the step beyond the 180-degree edge at the leading edge
     # (max skewness 3.53; 166 faces on F6 up to 43.2 before).
     "wing_m6_co": [HIGH_ASPECT],
@@ -86,7 +86,8 @@ ALLOWED = {
     # the wake volumes 397 at most): below 1000 needs steps under 0.014 chord at mid-chord
     # (mean 0.016), inherent to 1e-5 chord with 64 chordwise intervals clustered at the
     # leading and trailing edges. No highly skewed face since the spanwise steps at the tip
-    # match those beyond the 180-degree edges (max skewness 3.69; README "ONERA M6").
+    # match those beyond the 180-degree edges (max skewness 3.69; docs/ONERA_M6.md, "No highly
+    # skewed faces").
     "wing_m6_4block": [HIGH_ASPECT],
 }
 

@@ -41,12 +41,12 @@
 //! plane (below, "Along the span"): checkMesh finds no highly skewed face (it found 64, max
 //! skewness 5.35, with 1.2e-3 everywhere). Left: the kinks across the other faces between the
 //! volumes (means 50–63° at full size: those faces are gridded on their own before the
-//! volumes; README, "ONERA M6").
+//! volumes; docs/ONERA_M6.md).
 
 /// The interior faces whose nodes float with the volumes (`interface = "floating"`): the wake
 /// sheet (mean kink 18.4° → 2.2° at 33 × 33 × 25). Floating `ahead` too halves its kink but
 /// spoils the wall correction (lines up to 80° off the wall normal); the strips across
-/// `te_up`/`te_lo`, `tipplane` and `waketip` do not converge (README, "ONERA M6").
+/// `te_up`/`te_lo`, `tipplane` and `waketip` do not converge (docs/ONERA_M6.md, "Not yet").
 const FLOATING: [&str; 1] = ["wakesheet"];
 
 #[path = "common/wing_co_shape.rs"]
@@ -568,11 +568,11 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
     // at the tip's leading and trailing edges with 1.2e-3 everywhere. So the last spanwise
     // step is the tip edge's chordwise step at the leading edge (1e-3 tip chord), out_tip's
     // first step (1e-3) at the outflow, and at the trailing edge, where waketip starts with
-    // the wall spacing (2e-5 tip chord), 1.5e-4, a compromise measured at 33, 49 and 65
-    // nodes (README, "ONERA M6"): 1.2e-3 left skewness 7.3; 1.8e-4 passed at 33 and 65
-    // nodes but not at 49 (4.1); 1e-4 passed but wing_up and wing_lo converged 3e-3 apart
-    // (no longer mirror images) at 33 nodes; 9.1e-5 and 7e-5 left wall lines next to the
-    // tip's trailing edge 5.7° (65 nodes) and 30° (49) off the normal.
+    // the wall spacing (2e-5 tip chord), 1.5e-4, a compromise measured at 33, 49 and 65 nodes
+    // (docs/ONERA_M6.md, "No highly skewed faces"): 1.2e-3 left skewness 7.3; 1.8e-4 passed at 33
+    // and 65 nodes but not at 49 (4.1); 1e-4 passed but wing_up and wing_lo converged 3e-3 apart
+    // (no longer mirror images) at 33 nodes; 9.1e-5 and 7e-5 left wall lines next to the tip's
+    // trailing edge 5.7° (65 nodes) and 30° (49) off the normal.
     let spanwise = |last: f64| vin(Some(0.04), Some(last));
     e(
         "le_line",
@@ -631,7 +631,8 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
     // (name, kind, surface, [E1, E2, E3, E4], orthogonal sides, family). The wing faces are
     // orthogonal at the leading edge only: orthogonal to the swept trailing edge too, their
     // chordwise lines left it 16-18° inboard of the streamwise wake lines (mean kink across
-    // te_up/lo 59.3° without against 69.2° with, 33 × 33 × 25; README, "ONERA M6").
+    // te_up/lo 59.3° without against 69.2° with, 33 × 33 × 25; docs/ONERA_M6.md, "Wall columns
+    // from the side faces").
     let faces: Vec<FaceRow> = vec![
         (
             "wall_up",

@@ -155,10 +155,10 @@ fn square_cap_edge(n: usize) -> String {
     )
 }
 
-/// The bench's square-cap dent (#16): with the algebraic control functions the converged grid
-/// folds next to the cap's two reentrant corners (108 cells at 257², README "Memory"); with
-/// orthogonality at the dented edge (Section 2.4) it is fold-free with a smallest scaled
-/// Jacobian of 0.446.
+/// The bench's square-cap dent (#16): with the algebraic control functions the converged grid folds
+/// next to the cap's two reentrant corners (108 cells at 257², docs/PERFORMANCE.md "Memory"); with
+/// orthogonality at the dented edge (Section 2.4) it is fold-free with a smallest scaled Jacobian
+/// of 0.446.
 #[test]
 fn a_square_cap_dent_folds_at_its_reentrant_corners_unless_its_edge_is_orthogonal() {
     let n = 257;

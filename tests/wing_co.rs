@@ -313,8 +313,9 @@ fn shipped_co_block_has_no_highly_skewed_faces() {
 /// face-pair ratio up to 44 651. At 65 × 49 × 33 (numpy, the same formulas, matching checkMesh's
 /// set cell by cell): 33 cells, k = 30 … 31, j ≤ 2, 0.1 … 0.4 local chord, max 1815.75;
 /// off the cap 398; face-pair ratio up to 22 259, 10 666 cells above 1000. Inherent to the
-/// prescribed wall spacing with 64 chordwise intervals clustered at the leading and trailing
-/// edges (`.ci/check_meshes.py` allows it with that reason; README, "Volume blocks").
+/// prescribed wall spacing with 64 chordwise intervals clustered at the leading and trailing edges
+/// (`.ci/check_meshes.py` allows it with that reason; docs/WING_CO_BLOCK.md, "checkMesh's high
+/// aspect ratio cells").
 #[test]
 fn high_aspect_ratio_cells_are_the_axis_aligned_wall_cells_at_the_tip_edge() {
     use common::foam::{cell_faces, face_pair_aspect_ratio, foam_aspect_ratio};

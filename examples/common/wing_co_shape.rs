@@ -17,7 +17,7 @@
 //! elliptic solver. Along the span the wall's k-lines are y = const inboard and clustered in φ
 //! towards the tip edge on the cap ([`span_lambdas`], [`tip_dphi`]): the cells along the flat
 //! edge E7 and the thin sections next to the leading and trailing edges want a short last step
-//! there (checkMesh's highly skewed faces, README "Volume blocks").
+//! there (checkMesh's highly skewed faces, docs/WING_CO_BLOCK.md).
 #![allow(dead_code)]
 
 use ellipgrid::{Grid2, Grid3};
@@ -173,7 +173,8 @@ pub fn span_lambdas(nk: usize, tip_dphi: f64) -> Vec<f64> {
 /// step there (1.8e-3, φ step 18°) leaves the thin sections next to the trailing edge reaching
 /// F6 too flat (checkMesh skewness 4.5 at i = 62); 7.5° (the uniform step) sheared the cells
 /// at the tip's trailing edge (growth ratio along k 5.8, faces up to 76° non-orthogonal); 11°
-/// and 15° measured as well (README, "Volume blocks").
+/// and 15° measured as well (docs/WING_CO_BLOCK.md, "Faster wall passes, and the tip's last
+/// steps").
 pub const TIP_DPHI_TE_DEG: f64 = 13.0;
 
 /// The cap's last φ step (rad) at the leading edge, from the steps on both sides of the 180°
@@ -186,7 +187,7 @@ pub const TIP_DPHI_TE_DEG: f64 = 13.0;
 /// edge then also reach the tip edge steeply (their last step Δ (1 − cos δφ) in y against
 /// t sin δφ in z) instead of nearly in the wing plane. With every wall line's last step the
 /// same fraction of its length (3e-3 at the leading edge, against 6e-5 beyond E7) checkMesh
-/// found 166 highly skewed faces on F6, skewness up to 43 (README, "Volume blocks").
+/// found 166 highly skewed faces on F6, skewness up to 43 (docs/WING_CO_BLOCK.md).
 pub fn tip_dphi(x1: f64) -> f64 {
     let step = chord(SEMI_SPAN) * x1;
     let delta = CAP * SEMI_SPAN;

@@ -33,7 +33,7 @@
 //! A full-approximation-scheme correction of the finest level from the level below (its
 //! residual restricted as a source of the coarse problem, the coarse change prolonged) was
 //! tried on the dented square and not kept: it halves the next fine Newton update at best and
-//! saves no fine step (README, "What limits the dented domain").
+//! saves no fine step (docs/PERFORMANCE.md, "What limits the dented domain").
 //!
 //! Measured (`examples/bench_grid.rs`, curved domain): 3 Picard steps on the finest grid at
 //! 257²–1025², against 11 for plain Picard (4 against 6 on the boundary layer of aspect ratio

@@ -95,7 +95,8 @@ pub fn remap(v: f64, r: f64) -> f64 {
 /// than the elliptic solution (growth ratios along i and k up to 8.4 and 8.1) and their lines
 /// bent next to the faces between the volumes. With q = 10 (ψ = 0.35 at v₀ = 0.1), at full size:
 /// the same wall figures, growth ratios 3.9 and 5.7, mean kinks across te and tipplane 6° lower,
-/// half the faces above 70° non-orthogonality in checkMesh (README, "ONERA M6").
+/// half the faces above 70° non-orthogonality in checkMesh (docs/ONERA_M6.md, "How far the wall
+/// correction reaches").
 pub const BLEND_POWER: i32 = 10;
 
 /// The width a of the flat part of the goal blend ([`BLEND_POWER`]): ψ ≥ e^{−(v₀/a)²}, so that

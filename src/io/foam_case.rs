@@ -10,7 +10,8 @@
 //!
 //! No `potentialFoam` start: the potential flow about a sharp trailing edge has no Kutta
 //! condition and leaves a jet through the trailing edge that the viscous iteration removes
-//! only very slowly in the wall-resolved cells there (README, "OpenFOAM case").
+//! only very slowly in the wall-resolved cells there (docs/SOLVER_MESHES.md,
+//! "OpenFOAM case: why the first version stalled").
 
 use crate::io::foam::{patch_name, write_polymesh_as};
 use crate::io::mesh::{BcKind, Mesh};
