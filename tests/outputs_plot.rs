@@ -344,3 +344,70 @@ fn selected_blocks_only_are_drawn() {
         assert!(!d.path().join("s.svg").exists());
     }
 }
+
+/// `--slice`: two 5 × 5 × 5 boxes side by side (x in [0, 1] and [1, 2]) cut at z = 0.6 give
+/// each box's tensor grid: 2 × 40 segments (i and j surfaces, 4 segments each), 2 × 16 of them on
+/// the boxes' faces (drawn heavy); the bad-input paths exit 2 without a picture.
+#[test]
+fn a_slice_through_two_boxes_draws_their_cut_grids() {
+    use ellipgrid::io::plot3d::{write_plot3d, Plot3dFormat};
+    use ellipgrid::plot::{cut, Slice};
+    use ellipgrid::Grid3;
+    let d = tmp();
+    let boxes: Vec<Block> = (0..2)
+        .map(|b| {
+            Block::Volume(Grid3::from_fn(5, 5, 5, |i, j, k| {
+                [b as f64 + i as f64 / 4.0, j as f64 / 4.0, k as f64 / 4.0]
+            }))
+        })
+        .collect();
+    let path = d.path().join("boxes.x");
+    write_plot3d(&path, &boxes, &Plot3dFormat::default(), None).unwrap();
+    let o = ellipgrid(
+        d.path(),
+        &["plot", "boxes.x", "--slice", "z=0.6", "-o", "s.svg", "-q"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let svg = std::fs::read_to_string(d.path().join("s.svg")).unwrap();
+    let lines: Vec<&str> = svg.lines().filter(|l| l.starts_with("<polyline")).collect();
+    assert_eq!(lines.len(), 80, "one polyline per segment");
+    let width = |l: &str| -> f64 {
+        let s = &l[l.find("stroke-width=\"").unwrap() + 14..];
+        s[..s.find('"').unwrap()].parse().unwrap()
+    };
+    let thick = width(lines.last().unwrap());
+    assert_eq!(lines.iter().filter(|l| width(l) == thick).count(), 32);
+    // The library gives the same cut.
+    let Block::Volume(g) = &boxes[0] else {
+        unreachable!()
+    };
+    assert_eq!(cut(g, Slice::parse("z=0.6").unwrap()).len(), 40);
+    let o = ellipgrid(
+        d.path(),
+        &[
+            "plot", "boxes.x", "--slice", "y=0.5", "--view", "iso", "-o", "iso.png", "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    for args in [
+        vec!["--slice", "z=2"],
+        vec!["--slice", "w=0.5"],
+        vec!["--slice", "z=0.5", "--plane", "k=1"],
+        vec!["--slice", "z=0.5", "--color", "skewness"],
+    ] {
+        let mut a = vec!["plot", "boxes.x", "-o", "bad.png", "-q"];
+        a.extend(&args);
+        let o = ellipgrid(d.path(), &a);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
+        assert!(!d.path().join("bad.png").exists(), "{args:?}");
+    }
+    // A planar grid has nothing to cut.
+    let g = Grid2::<2>::from_fn(3, 3, |i, j| [i as f64, j as f64]);
+    let opts = PlotOptions {
+        slice: Slice::parse("x=0.5"),
+        ..PlotOptions::default()
+    };
+    let p = d.path().join("planar.png");
+    assert!(write_picture(&p, &[("g".into(), Block::Planar(g))], &opts).is_err());
+    assert!(!p.exists());
+}

@@ -2,7 +2,7 @@
 
 use clap::Args;
 use ellipgrid::io::Block;
-use ellipgrid::plot::{self, Marks, Plane, PlotOptions, View};
+use ellipgrid::plot::{self, Marks, Plane, PlotOptions, Slice, View};
 use ellipgrid::{Error, Result};
 use std::path::PathBuf;
 
@@ -33,6 +33,11 @@ pub struct PlotArgs {
     /// Draw one grid plane of volume blocks (0-based): i=I, j=J or k=K.
     #[arg(long, value_name = "k=K")]
     plane: Option<String>,
+    /// Draw the cut of the volume blocks by a coordinate plane: x=X, y=Y or z=Z (e.g. a
+    /// horizontal plane through a wing: z=0.02); seen along its normal unless --view says
+    /// otherwise.
+    #[arg(long, value_name = "z=Z", allow_hyphen_values = true)]
+    slice: Option<String>,
     /// Fill every block with its own colour, with a legend of block names.
     #[arg(long)]
     blocks: bool,
@@ -95,6 +100,21 @@ pub fn plot(a: &PlotArgs) -> Result<()> {
                 .ok_or_else(|| bad("--plane", format!("'{s}': expected i=I, j=J or k=K")))?,
         ),
     };
+    let slice = match &a.slice {
+        None => None,
+        Some(s) => Some(Slice::parse(s).ok_or_else(|| {
+            bad(
+                "--slice",
+                format!("'{s}': expected x=X, y=Y or z=Z with a finite coordinate"),
+            )
+        })?),
+    };
+    if slice.is_some() && (a.plane.is_some() || a.color.is_some() || a.blocks) {
+        return Err(bad(
+            "--slice",
+            "draws the cut as grid lines: not with --plane, --color or --blocks".into(),
+        ));
+    }
     let color = a.color.as_deref().map(metric).transpose()?;
     let ext = a
         .output
@@ -113,6 +133,7 @@ pub fn plot(a: &PlotArgs) -> Result<()> {
         color,
         view,
         plane,
+        slice,
         blocks: a.blocks,
     };
     if a.blocks && opts.color.is_some() {

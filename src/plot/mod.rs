@@ -2,8 +2,8 @@
 //! system libraries) or SVG (written as text).
 //!
 //! A planar block is drawn in the (x, y) plane; surfaces and volumes are projected
-//! ([`View`]: onto xy, xz, yz or isometric), a volume either as its six faces or as one grid
-//! plane ([`Plane`]). Grid lines are thin and dark, block boundaries heavier. With a metric
+//! ([`View`]: onto xy, xz, yz or isometric), a volume either as its six faces, as one grid
+//! plane ([`Plane`]) or as its cut by a coordinate plane ([`Slice`]). Grid lines are thin and dark, block boundaries heavier. With a metric
 //! ([`PlotOptions::color`]) the cells are filled on a viridis-like scale over the range of the cells
 //! in view, and a colour bar with the range and the metric's name stands at the right.
 //! Pictures of surfaces and volumes, and coloured pictures, are drawn cell by cell from back to
@@ -15,7 +15,9 @@
 
 mod canvas;
 mod marks;
+mod slice;
 pub use marks::Marks;
+pub use slice::{cut, Segment, Slice};
 
 use std::path::Path;
 
@@ -100,6 +102,8 @@ pub struct PlotOptions {
     pub view: Option<View>,
     /// Draw this grid plane of volume blocks instead of their faces.
     pub plane: Option<Plane>,
+    /// Draw the cut of the volume blocks by this coordinate plane instead of their faces.
+    pub slice: Option<Slice>,
     /// Fill every block with its own colour, with a legend of block names.
     pub blocks: bool,
 }
@@ -112,6 +116,7 @@ impl Default for PlotOptions {
             color: None,
             view: None,
             plane: None,
+            slice: None,
             blocks: false,
         }
     }
@@ -150,6 +155,12 @@ pub fn write_picture_marked(
             "block colours and a quality metric's colours cannot be drawn together".into(),
         ));
     }
+    if opts.slice.is_some() && (opts.plane.is_some() || opts.color.is_some() || opts.blocks) {
+        return Err(bad(
+            "a slice is drawn as grid lines: not with a grid plane, a metric or block colours"
+                .into(),
+        ));
+    }
     let scene = Scene::new(blocks, opts, marks).map_err(bad)?;
     match ext.as_str() {
         "png" => {
@@ -181,10 +192,15 @@ struct Cell {
 /// A patch's size (ni, nj) and projected nodes.
 type Projected = (usize, usize, Vec<(f64, f64)>);
 
+/// A projected segment of a slice: its ends, true on a block face.
+type Segment2 = ((f64, f64), (f64, f64), bool);
+
 /// Projected patches and their cells.
 struct Scene {
     /// Projected nodes of each patch with its size (ni, nj).
     patches: Vec<Projected>,
+    /// Projected segments of a slice ([`Slice`]), true on a block face.
+    segments: Vec<Segment2>,
     cells: Vec<Cell>,
     /// Fill cells and sort them (else: grid lines only).
     painter: bool,
@@ -204,15 +220,42 @@ impl Scene {
             return Err("no blocks to draw".into());
         }
         let all_planar = blocks.iter().all(|(_, b)| matches!(b, Block::Planar(_)));
-        let view = opts
-            .view
-            .unwrap_or(if all_planar { View::Xy } else { View::Iso });
+        let default = match opts.slice {
+            Some(s) => s.view(),
+            None if all_planar => View::Xy,
+            None => View::Iso,
+        };
+        let view = opts.view.unwrap_or(default);
+        if opts.slice.is_some() && !blocks.iter().any(|(_, b)| matches!(b, Block::Volume(_))) {
+            return Err("--slice needs a volume block (this grid has none)".into());
+        }
+        let flat = |q: &[f64; 3]| {
+            let (x, y, _) = view.project(*q);
+            (x, y)
+        };
+        let mut segments = Vec::new();
+        if let Some(s) = opts.slice {
+            for (name, b) in blocks {
+                if let Block::Volume(g) = b {
+                    if !g.coords().iter().flatten().all(|c| c.is_finite()) {
+                        return Err(format!("block '{name}': non-finite coordinates"));
+                    }
+                    segments.extend(cut(g, s).iter().map(|(p, q, f)| (flat(p), flat(q), *f)));
+                }
+            }
+            if segments.is_empty() {
+                return Err(format!("the plane {} does not cut the grid", s.label()));
+            }
+        }
         if opts.plane.is_some() && !blocks.iter().any(|(_, b)| matches!(b, Block::Volume(_))) {
             return Err("--plane needs a volume block (this grid has none)".into());
         }
         let mut patches = Vec::new();
         let mut owner = Vec::new();
         for (k, (name, b)) in blocks.iter().enumerate() {
+            if opts.slice.is_some() {
+                break;
+            }
             let ps = match (b, opts.plane) {
                 (Block::Volume(g), Some(pl)) => {
                     let [ni, nj, nk] = g.dims();
@@ -243,7 +286,7 @@ impl Scene {
         }
         let painter = opts.color.is_some() || opts.blocks || !(all_planar && view == View::Xy);
         let mut cells = Vec::new();
-        let mut projected = Vec::new();
+        let mut projected: Vec<Projected> = Vec::new();
         for (p, &block) in patches.iter().zip(&owner) {
             let proj: Vec<(f64, f64, f64)> = p.points.iter().map(|&q| view.project(q)).collect();
             if painter {
@@ -275,23 +318,22 @@ impl Scene {
             f64::NEG_INFINITY,
             f64::NEG_INFINITY,
         ];
-        for (_, _, pts) in &projected {
-            for &(x, y) in pts {
-                bbox = [
-                    bbox[0].min(x),
-                    bbox[1].min(y),
-                    bbox[2].max(x),
-                    bbox[3].max(y),
-                ];
-            }
+        let ends = segments.iter().flat_map(|(p, q, _)| [*p, *q]);
+        for (x, y) in projected
+            .iter()
+            .flat_map(|p| p.2.iter().copied())
+            .chain(ends)
+        {
+            bbox = [
+                bbox[0].min(x),
+                bbox[1].min(y),
+                bbox[2].max(x),
+                bbox[3].max(y),
+            ];
         }
         if !bbox.iter().all(|v| v.is_finite()) {
             return Err("the grid has no nodes".into());
         }
-        let flat = |q: &[f64; 3]| {
-            let (x, y, _) = view.project(*q);
-            (x, y)
-        };
         let marks = (
             marks
                 .lines
@@ -306,6 +348,7 @@ impl Scene {
         );
         Ok(Scene {
             patches: projected,
+            segments,
             cells,
             painter,
             bbox,
@@ -401,6 +444,12 @@ impl Scene {
                 b.extend((0..nj.saturating_sub(1)).rev().map(|j| pts[ni * j]));
                 let b: Vec<_> = b.into_iter().map(tf).collect();
                 c.polyline(&b, bound, thick);
+            }
+        }
+        for heavy in [false, true] {
+            for (p, q, _) in self.segments.iter().filter(|g| g.2 == heavy) {
+                let (colour, width) = if heavy { (bound, thick) } else { (line, thin) };
+                c.polyline(&[tf(*p), tf(*q)], colour, width);
             }
         }
         marks::draw(c, &self.marks, &tf, s);
