@@ -3,9 +3,10 @@
 //!
 //! A planar block is drawn in the (x, y) plane; surfaces and volumes are projected
 //! ([`View`]: onto xy, xz, yz or isometric), a volume either as its six faces, as one grid
-//! plane ([`Plane`]) or as its cut by a coordinate plane ([`Slice`]). Grid lines are thin and dark, block boundaries heavier. With a metric
-//! ([`PlotOptions::color`]) the cells are filled on a viridis-like scale over the range of the cells
-//! in view, and a colour bar with the range and the metric's name stands at the right.
+//! plane ([`Plane`]) or as its cut by a coordinate plane ([`Slice`]). Grid lines are thin and
+//! dark, block boundaries heavier. With a metric ([`PlotOptions::color`]) the cells are filled
+//! on a viridis-like scale over the range of the cells in view, and a colour bar with the range
+//! and the metric's name stands at the right.
 //! Pictures of surfaces and volumes, and coloured pictures, are drawn cell by cell from back to
 //! front (painter's algorithm), so nearer faces hide farther ones. A window
 //! ([`PlotOptions::window`]) gives a close-up of part of the projected picture; the scale is the
