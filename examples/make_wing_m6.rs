@@ -36,18 +36,27 @@
 //! the lines left the tip's leading edge 6.3° off the normal and the flat-edge cells there
 //! had wrongly oriented face pyramids). The far wake's streamwise nodes are the wake sheet's,
 //! scaled (each far node above its sheet node): the mean kink across the wake sheet fell from
-//! 77° to 18°, and with the wake sheet floating (its nodes moving with the wake volumes) to
-//! about 2°. The spanwise steps at the tip match the steps beyond the 180° edges of the wing
+//! 77° to 18°, and with the wake sheet a symmetry face of the upper wake volume (its nodes
+//! sliding in the wing plane; the lower volumes are the upper ones' mirror images) to about
+//! 3°. The spanwise steps at the tip match the steps beyond the 180° edges of the wing
 //! plane (below, "Along the span"): checkMesh finds no highly skewed face (it found 64, max
 //! skewness 5.35, with 1.2e-3 everywhere). Left: the kinks across the other faces between the
 //! volumes (means 50–63° at full size: those faces are gridded on their own before the
 //! volumes; docs/ONERA_M6.md).
 
-/// The interior faces whose nodes float with the volumes (`interface = "floating"`): the wake
-/// sheet (mean kink 18.4° → 2.2° at 33 × 33 × 25). Floating `ahead` too halves its kink but
-/// spoils the wall correction (lines up to 80° off the wall normal); the strips across
-/// `te_up`/`te_lo`, `tipplane` and `waketip` do not converge (docs/ONERA_M6.md, "Not yet").
-const FLOATING: [&str; 1] = ["wakesheet"];
+/// The volumes that are the mirror images of others in the wing plane z = 0 (the ONERA D
+/// section is symmetric): the lower wing volume of the upper one, the lower wake volume of the
+/// upper one. Only the upper volumes are solved.
+const MIRRORS: [(&str, &str); 2] = [("wing_lo", "wing_up"), ("wake_lo", "wake_up")];
+
+/// The faces of a volume that are symmetry planes (their nodes slide in the plane, the lines
+/// meet it as the whole grid's cross it): the wake sheet, F3 of the upper wake volume (mean
+/// kink 18.4° fixed, 3.6° sliding at 33 × 33 × 25; 3.2° at full size, as the floating sheet
+/// before it at a third of the run time). `ahead` and `tipplane` share edges with the wall,
+/// whose passes hold their side faces; `waketip` as a symmetry face folds the cells next to
+/// the 180° edge at the tip (its nodes are asked to lie under inner nodes that are inboard
+/// of the edge; docs/ONERA_M6.md).
+const SYMMETRY: [(&str, &str); 1] = [("wake_up", "F3")];
 
 #[path = "common/wing_co_shape.rs"]
 mod shape;
@@ -332,9 +341,10 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
          # (the 3D multigrid diverges on these volumes), the wall columns following the\n\
          # side faces' profiles (wall_profiles = \"faces\"). No orthogonality at the interior\n\
          # faces in the volumes: those passes do not converge yet (README, \"ONERA M6\").\n\
-         # The wake sheet floats (interface = \"floating\"): its interior nodes move with\n\
-         # the wake volumes until the grid crosses it as inside one block (mean kink 18°\n\
-         # fixed, 2° floating); floating the other interior faces does not work yet.\n\
+         # The lower volumes are the mirror images of the upper ones in the wing plane\n\
+         # (mirror = ...: not solved), and the wake sheet is a symmetry face of the upper\n\
+         # wake volume (symmetry = [\"F3\"]): its nodes slide in z = 0 and the grid lines\n\
+         # cross it as the whole grid's (mean kink 18° fixed, 3° sliding).\n\
          # The spanwise steps at the tip (le_line, te_line, out_line) match the steps beyond\n\
          # the 180° edges of the wing plane there, so that checkMesh finds no highly skewed\n\
          # face at the tip's leading and trailing edges (examples/make_wing_m6.rs).\n\
@@ -802,9 +812,6 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
         if !orth.is_empty() {
             writeln!(t, "orthogonal = [{orth}]").unwrap();
         }
-        if FLOATING.contains(name) {
-            writeln!(t, "interface = \"floating\"").unwrap();
-        }
         writeln!(t, "family = \"{fam}\"\n").unwrap();
     }
     // (name, F1 … F6, wall)
@@ -859,6 +866,16 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
         }
         // The 3D multigrid's cycles diverge on these flattened, strongly stretched volumes.
         writeln!(t, "linear = \"bicgstab\"").unwrap();
+        for (v, f) in SYMMETRY {
+            if v == *name {
+                writeln!(t, "symmetry = [\"{f}\"]").unwrap();
+            }
+        }
+        for (v, a) in MIRRORS {
+            if v == *name {
+                writeln!(t, "mirror = \"{a}\"").unwrap();
+            }
+        }
         t.push('\n');
     }
     t

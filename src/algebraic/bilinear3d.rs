@@ -41,6 +41,13 @@ pub struct ParamGrid3 {
 }
 
 impl ParamGrid3 {
+    /// The (s, t, u) grid of `dims` nodes with the given values (i fastest).
+    pub fn from_values(dims: [usize; 3], s: Vec<f64>, t: Vec<f64>, u: Vec<f64>) -> Self {
+        let n: usize = dims.iter().product();
+        assert!(s.len() == n && t.len() == n && u.len() == n);
+        ParamGrid3 { dims, s, t, u }
+    }
+
     /// Node counts (ni, nj, nk).
     pub fn dims(&self) -> [usize; 3] {
         self.dims

@@ -86,6 +86,55 @@ fn interior(f: [&[f64]; 3], n: usize, st: [usize; 3]) -> [f64; 18] {
     q
 }
 
+/// The control functions at node `ijk` of a face (normal to `axis`) of the (s, t, u) grid
+/// `pg`, as at the plane of symmetry of the whole domain that the block is the half of: the
+/// parameter along `axis` continued oddly beyond the face (its mirror image), the other two
+/// evenly ([`crate::elliptic::symmetry3d`]), without the components P^c_aa (c ≠ a, a =
+/// `axis`) that would make the lines cross the plane obliquely. Only the face's inside (not
+/// its rim).
+pub fn at_symmetry_face(pg: &ParamGrid3, axis: usize, ijk: [usize; 3]) -> [f64; 18] {
+    let [ni, nj, _] = pg.dims();
+    let layer = ijk[axis];
+    let high = layer > 0;
+    let param = [&pg.s, &pg.t, &pg.u];
+    let index = |p: [isize; 3]| p[0] as usize + ni * p[1] as usize + ni * nj * p[2] as usize;
+    // The 3 × 3 × 3 neighbourhood of every parameter, ghosts beyond the face: a ghost's
+    // partner is its mirror image in the face; the parameter along `axis` continues as
+    // 2 s(face) − s(partner) on the partner's line, the others as their partner's values.
+    let mut loc = [[0.0; 27]; 3];
+    for m in 0..27usize {
+        let o = [m % 3, (m / 3) % 3, m / 9];
+        let mut p: [isize; 3] = std::array::from_fn(|d| ijk[d] as isize + o[d] as isize - 1);
+        let beyond = if high {
+            p[axis] > layer as isize
+        } else {
+            p[axis] < 0
+        };
+        if beyond {
+            p[axis] = 2 * layer as isize - p[axis];
+        }
+        let mut on_face = p;
+        on_face[axis] = layer as isize;
+        for (c, (pc, lc)) in param.iter().zip(loc.iter_mut()).enumerate() {
+            lc[m] = if beyond && c == axis {
+                2.0 * pc[index(on_face)] - pc[index(p)]
+            } else {
+                pc[index(p)]
+            };
+        }
+    }
+    let mut q = interior([&loc[0], &loc[1], &loc[2]], 13, [1, 3, 9]);
+    // The lines are to cross the plane at right angles: drop the components P^c_aa (c ≠ a)
+    // that an algebraic map oblique to the face has there (they set the face nodes' offset
+    // from their inner neighbours; ONERA M6 wake sheet: mean kink 18.3° with them, 3.2°
+    // without).
+    let maa = [0, 3, 5][axis];
+    for c in (0..3).filter(|&c| c != axis) {
+        q[3 * maa + c] = 0.0;
+    }
+    q
+}
+
 /// The control functions at node `n` of a grid of `dims` nodes from its (s, t, u) grid `f`:
 /// [`interior`], zero on the boundary.
 fn node(dims: &[usize; 3], f: &[Vec<f64>; 3], n: usize) -> [f64; 18] {

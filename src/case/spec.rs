@@ -571,6 +571,15 @@ pub struct VolumeSpec {
     /// topology, the lines cross it without a kink.
     #[serde(default)]
     pub orthogonal: Vec<String>,
+    /// Faces ("F1" … "F6") that are symmetry planes ([`crate::elliptic::symmetry3d`]): each
+    /// lies on a plane, its nodes slide in it and the grid lines meet it at right angles, as
+    /// in the whole domain's grid of which the block is the half.
+    #[serde(default)]
+    pub symmetry: Vec<String>,
+    /// In a volume topology: this volume is the mirror image of the named one in the plane of
+    /// the symmetry faces they share (`symmetry` of that volume): not solved, but mirrored
+    /// ([`crate::job`]'s `mirror`), so that the grid lines cross those faces without a kink.
+    pub mirror: Option<String>,
     #[serde(rename = "E1")]
     pub e1: Option<EdgeSpec>,
     #[serde(rename = "E2")]

@@ -22,6 +22,7 @@ use crate::algebraic::flat_edge::edge_functions;
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::picard::{append, PicardInfo, PicardParams, PicardStep, VolumeResult};
+use crate::elliptic::symmetry3d::{Symmetry, SymmetryFace};
 use crate::elliptic::wall::{
     remap_volume, WallProfiles, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES,
     TOLERANCE,
@@ -44,12 +45,15 @@ pub struct FaceCorrections {
     pub orthogonal: [bool; 6],
     /// Where the wall columns' goal profiles come from ([`WallProfiles`]).
     pub profiles: WallProfiles,
+    /// Faces that are symmetry planes ([`crate::elliptic::symmetry3d`]): every solve lets
+    /// their nodes slide in their planes.
+    pub symmetry: [bool; 6],
 }
 
 impl FaceCorrections {
-    /// True if there is anything to correct.
+    /// True if there is anything to correct (or a symmetry face to slide).
     pub fn any(&self) -> bool {
-        self.wall.is_some() || self.orthogonal.contains(&true)
+        self.wall.is_some() || self.orthogonal.contains(&true) || self.symmetry.contains(&true)
     }
 }
 
@@ -95,6 +99,20 @@ pub fn grid_volume_corrected_with(
     )
 }
 
+/// The symmetry faces flagged in `flags` of the block of `faces`, each on its plane.
+pub fn symmetry_of(faces: &Faces, flags: &[bool; 6], place: &str) -> Result<Symmetry> {
+    if !flags.contains(&true) {
+        return Ok(Symmetry::none());
+    }
+    let mut x = Grid3::zeros(faces.dims()[0], faces.dims()[1], faces.dims()[2]);
+    faces.apply_to(&mut x);
+    (0..6)
+        .filter(|&f| flags[f])
+        .map(|f| SymmetryFace::of_grid(&x, f + 1, place))
+        .collect::<Result<Vec<_>>>()
+        .map(Symmetry::new)
+}
+
 /// The algebraic map S a block's passes correct and how its control functions follow from
 /// it: a volume's own ([`bilinear`] of its edge functions, [`Control3::from_algebraic`]), or
 /// the strip across a floating face glued from its volumes' maps, its controls at the face
@@ -130,7 +148,13 @@ pub fn grid_volume_corrected_to(
         ..params.clone()
     };
     let mut info: Option<PicardInfo> = None;
-    // Pass 0: the uncorrected grid (nested iteration from the faces, or from `start`).
+    let sym = symmetry_of(faces, &c.symmetry, place)?;
+    // Pass 0: the uncorrected grid (nested iteration from the faces, or from `start`; with
+    // symmetry faces, the plain iteration from the transfinite grid).
+    let start = match start {
+        None if !sym.is_empty() => Some(transfinite(faces)),
+        s => s,
+    };
     let mut x = match start {
         Some(g) if g.dims() == faces.dims() => {
             let mut x = g;
@@ -138,7 +162,15 @@ pub fn grid_volume_corrected_to(
             let ctrl = controls(&pg);
             append(
                 &mut info,
-                poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)?,
+                poisson3d::solve_symmetric(
+                    &mut x,
+                    &ctrl,
+                    &sym.with_controls(&pg),
+                    solver,
+                    &loose,
+                    place,
+                    progress,
+                )?,
             );
             x
         }
@@ -172,7 +204,15 @@ pub fn grid_volume_corrected_to(
                 let ctrl = controls(&pg);
                 append(
                     &mut info,
-                    poisson3d::solve(&mut x, &ctrl, solver, &loose, place, progress)?,
+                    poisson3d::solve_symmetric(
+                        &mut x,
+                        &ctrl,
+                        &sym.with_controls(&pg),
+                        solver,
+                        &loose,
+                        place,
+                        progress,
+                    )?,
                 );
                 x
             }
@@ -241,7 +281,15 @@ pub fn grid_volume_corrected_to(
         if done || last {
             // A final solve to the asked tolerance from the current grid.
             let ctrl = controls(&pg);
-            let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress);
+            let step = poisson3d::solve_symmetric(
+                &mut x,
+                &ctrl,
+                &sym.with_controls(&pg),
+                solver,
+                params,
+                place,
+                progress,
+            );
             let fine = step.is_ok() && (ortho.is_empty() || score(&x).0 == 0);
             let (bpg, bx) = match (step, best.take()) {
                 (Ok(step), _) if fine => {
@@ -260,7 +308,15 @@ pub fn grid_volume_corrected_to(
             let ctrl = controls(&pg);
             append(
                 &mut info,
-                poisson3d::solve(&mut x, &ctrl, solver, params, place, progress)?,
+                poisson3d::solve_symmetric(
+                    &mut x,
+                    &ctrl,
+                    &sym.with_controls(&pg),
+                    solver,
+                    params,
+                    place,
+                    progress,
+                )?,
             );
             break;
         }
@@ -282,7 +338,15 @@ pub fn grid_volume_corrected_to(
                     ),
                 ));
             }
-            poisson3d::solve(x, &ctrl, solver, &loose, place, progress)
+            poisson3d::solve_symmetric(
+                x,
+                &ctrl,
+                &sym.with_controls(pg),
+                solver,
+                &loose,
+                place,
+                progress,
+            )
         };
         let x_before = x.clone();
         let mut solved = attempt(&pg, &mut x);
@@ -309,7 +373,15 @@ pub fn grid_volume_corrected_to(
                 Some((_, bpg, bx)) => {
                     (pg, x) = (bpg, bx);
                     let ctrl = controls(&pg);
-                    let step = poisson3d::solve(&mut x, &ctrl, solver, params, place, progress)?;
+                    let step = poisson3d::solve_symmetric(
+                        &mut x,
+                        &ctrl,
+                        &sym.with_controls(&pg),
+                        solver,
+                        params,
+                        place,
+                        progress,
+                    )?;
                     append(&mut info, step);
                     break;
                 }

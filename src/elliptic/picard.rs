@@ -342,6 +342,9 @@ pub(crate) struct Linear<'s, A> {
     pub a: &'s A,
     pub r: &'s [Vec<f64>],
     pub u: &'s mut [Vec<f64>],
+    /// Per coordinate, the solver of its own operator, if not `solver` (the coordinate
+    /// normal to a volume's symmetry faces, [`crate::elliptic::symmetry3d`]).
+    pub others: [Option<&'s dyn LinearSolver<A>>; 3],
 }
 
 impl<'s, A> Linear<'s, A> {
@@ -351,7 +354,18 @@ impl<'s, A> Linear<'s, A> {
         r: &'s [Vec<f64>],
         u: &'s mut [Vec<f64>],
     ) -> Self {
-        Linear { solver, a, r, u }
+        Linear {
+            solver,
+            a,
+            r,
+            u,
+            others: [None; 3],
+        }
+    }
+
+    /// The same with `others` (see the field).
+    pub fn with_others(self, others: [Option<&'s dyn LinearSolver<A>>; 3]) -> Self {
+        Linear { others, ..self }
     }
 }
 
@@ -430,7 +444,8 @@ pub(crate) fn run<S: System>(
                 source,
             })?;
             let lin = sys.linear();
-            let (solves, largest) = solve_corrections(&*lin.solver, lin.u, lin.r, ctl);
+            let (solves, largest) =
+                solve_corrections_with(&*lin.solver, &lin.others, lin.u, lin.r, ctl);
             moved = largest / diam;
             if let Some(aa) = anderson.as_mut() {
                 // the step that may stop the iteration is a plain Picard step: the error
@@ -576,14 +591,34 @@ pub(crate) fn solve_corrections<A>(
     r: &[Vec<f64>],
     ctl: &SolveControl,
 ) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
-    let one = |(uc, rc): (&mut Vec<f64>, &Vec<f64>)| {
+    solve_corrections_with(solver, &[], u, r, ctl)
+}
+
+/// [`solve_corrections`], coordinate c with `others[c]` instead of `solver` where given.
+pub(crate) fn solve_corrections_with<A>(
+    solver: &dyn LinearSolver<A>,
+    others: &[Option<&dyn LinearSolver<A>>],
+    u: &mut [Vec<f64>],
+    r: &[Vec<f64>],
+    ctl: &SolveControl,
+) -> (Vec<std::result::Result<SolveInfo, SolveError>>, f64) {
+    let one = |(c, (uc, rc)): (usize, (&mut Vec<f64>, &Vec<f64>))| {
         uc.fill(0.0);
-        solver.solve(rc, uc, ctl)
+        others
+            .get(c)
+            .copied()
+            .flatten()
+            .unwrap_or(solver)
+            .solve(rc, uc, ctl)
     };
     let infos = if u.first().map_or(0, Vec::len) >= ONE_AT_A_TIME {
-        u.iter_mut().zip(r.iter()).map(one).collect()
+        u.iter_mut().zip(r.iter()).enumerate().map(one).collect()
     } else {
-        u.par_iter_mut().zip(r.par_iter()).map(one).collect()
+        u.par_iter_mut()
+            .zip(r.par_iter())
+            .enumerate()
+            .map(one)
+            .collect()
     };
     let largest = u
         .iter()

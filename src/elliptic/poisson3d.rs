@@ -19,86 +19,42 @@
 //! nested iteration ([`crate::elliptic::nested3d`]).
 
 use crate::algebraic::control3d::Control3;
+pub use crate::elliptic::metric3d::alphas;
+use crate::elliptic::metric3d::row_coefficients;
 use crate::elliptic::picard;
 use crate::elliptic::picard::{PicardInfo, PicardParams, PicardStep};
+use crate::elliptic::symmetry3d::{face_row, Symmetry};
 use crate::solve::stencil19::{Stencil19, C, OFFSETS};
 use crate::solve::{LinearSolver, SolveError};
 use crate::{Grid3, Result};
 use rayon::prelude::*;
 
-/// The six α^ij of [88] in the order 11, 12, 13, 22, 23, 33, from g_ij.
-#[inline]
-pub fn alphas(g: [[f64; 3]; 3]) -> [f64; 6] {
-    [
-        g[1][1] * g[2][2] - g[1][2] * g[1][2],
-        g[0][2] * g[1][2] - g[0][1] * g[2][2],
-        g[0][1] * g[1][2] - g[0][2] * g[1][1],
-        g[0][0] * g[2][2] - g[0][2] * g[0][2],
-        g[0][2] * g[0][1] - g[0][0] * g[1][2],
-        g[0][0] * g[1][1] - g[0][1] * g[0][1],
-    ]
-}
-
-/// One row of the (negated) operator in the slot order of [`OFFSETS`], divided by its
-/// diagonal 2(α¹¹ + α²² + α³³) (the row is left as it is if that is zero): the centre 1, the
-/// face neighbours −(α^tt ± ½ s_t) along axis t, and the edge neighbours ∓½ α^pr of the
-/// 4-corner mixed derivatives (sign −o_p o_r), with s the first-derivative coefficients
-/// Σ_ij α^ij P^k_ij.
-///
-/// Why the rows are scaled: α^ij scales with the fourth power of the local spacing, so at a
-/// clustered wall the rows are 1e-6 of the far field's (ONERA M6: diagonal 4e-11 next to the
-/// tip's trailing edge against 1e-5 in the far field). A Bi-CGSTAB solve of an inexact Picard
-/// step stops at a relative 2-norm of the residual, which then ignores the near-wall rows: the
-/// corrections there were left wrong by many local cell heights, the next iterate degenerate
-/// and its correction up to 5 block diameters (the M6 wing volumes' spikes after every wall
-/// pass, 314 Picard steps). Scaled rows weigh every node's equation alike, as the Picard
-/// residual [24] does (each row divided by its diagonal); the fixed point is the same.
-#[inline]
-fn row_coefficients(row: &mut [f64; 19], al: [f64; 6], sk: [f64; 3]) {
-    let [d0, d1, d2] = [al[0], al[3], al[5]];
-    let diag = 2.0 * (d0 + d1 + d2);
-    let scale = if diag > 0.0 { 1.0 / diag } else { 1.0 };
-    let [d0, d1, d2] = [d0, d1, d2].map(|v| v * scale);
-    let (h01, h02, h12) = (
-        0.5 * scale * al[1],
-        0.5 * scale * al[2],
-        0.5 * scale * al[4],
-    );
-    let [s0, s1, s2] = sk.map(|v| 0.5 * scale * v);
-    *row = [
-        if diag > 0.0 { 1.0 } else { diag },
-        -(d0 - s0),
-        -(d0 + s0),
-        -(d1 - s1),
-        -(d1 + s1),
-        -(d2 - s2),
-        -(d2 + s2),
-        -h01,
-        h01,
-        h01,
-        -h01,
-        -h02,
-        h02,
-        h02,
-        -h02,
-        -h12,
-        h12,
-        h12,
-        -h12,
-    ];
-}
-
 /// Assembles the frozen 19-point operator of [86] at iterate `x` and the right-hand sides
 /// (one per coordinate) that carry the Dirichlet boundary values. Rows are multiplied by −1 so
 /// that the diagonal 2(α11 + α22 + α33) is positive, and divided by it (`row_coefficients`: why).
 pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f64>; 3]) {
-    let [ni, nj, nk] = x.dims();
-    let [nx, ny, nz] = [ni - 2, nj - 2, nk - 2];
+    assemble_with(x, ctrl, &Symmetry::none(), a, rhs)
+}
+
+/// [`assemble`] with symmetry faces, whose nodes are unknowns too
+/// ([`crate::elliptic::symmetry3d`]): the operator's unknowns are the box
+/// [`Symmetry::unknown_box`].
+pub fn assemble_with(
+    x: &Grid3,
+    ctrl: &Control3,
+    sym: &Symmetry,
+    a: &mut Stencil19,
+    rhs: &mut [Vec<f64>; 3],
+) {
+    let dims = x.dims();
+    let [ni, nj, nk] = dims;
+    let (lo, [nx, ny, nz]) = sym.unknown_box(dims);
     assert_eq!(a.dims(), [nx, ny, nz]);
     let (plane, uplane) = (ni * nj, nx * ny);
     let st = [1isize, ni as isize, plane as isize];
     let xs = x.coords();
     let [r0, r1, r2] = rhs;
+    let unknown = |p: [usize; 3]| (0..3).all(|d| p[d] >= lo[d] && p[d] < lo[d] + [nx, ny, nz][d]);
     a.coefs_mut()
         .par_chunks_mut(uplane)
         .zip(r0.par_chunks_mut(uplane))
@@ -106,14 +62,47 @@ pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f6
         .zip(r2.par_chunks_mut(uplane))
         .enumerate()
         .for_each(|(kk, (((arow, b0), b1), b2))| {
-            let k = kk + 1;
+            let k = kk + lo[2];
             let mut bs = [b0, b1, b2];
             for jj in 0..ny {
-                let j = jj + 1;
+                let j = jj + lo[1];
                 for ii in 0..nx {
-                    let i = ii + 1;
+                    let i = ii + lo[0];
                     let n = i + ni * j + plane * k;
                     let q = ii + nx * jj;
+                    let row = &mut arow[q];
+                    if !sym.is_empty() {
+                        match sym.on(dims, [i, j, k]) {
+                            Ok(None) => {}
+                            Ok(Some(f)) => {
+                                let mut b = [0.0; 3];
+                                let own = sym.control(f, dims, [i, j, k]);
+                                face_row(
+                                    x,
+                                    ctrl,
+                                    own,
+                                    &sym.faces()[f],
+                                    [i, j, k],
+                                    unknown,
+                                    row,
+                                    &mut b,
+                                );
+                                for (bc, v) in bs.iter_mut().zip(b) {
+                                    bc[q] = v;
+                                }
+                                continue;
+                            }
+                            Err(()) => {
+                                // held: δ = 0 (b − A x = 0)
+                                *row = [0.0; 19];
+                                row[C] = 1.0;
+                                for (bc, xc) in bs.iter_mut().zip(xs.iter()) {
+                                    bc[q] = xc[n];
+                                }
+                                continue;
+                            }
+                        }
+                    }
                     // Covariant metric g_ab = x_a · x_b, central differences.
                     let mut d = [[0.0; 3]; 3];
                     for (c, xc) in xs.iter().enumerate() {
@@ -130,27 +119,21 @@ pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f6
                     let w = [1.0, 2.0, 2.0, 1.0, 2.0, 1.0];
                     let sk: [f64; 3] =
                         std::array::from_fn(|c| (0..6).map(|m| w[m] * al[m] * pk[3 * m + c]).sum());
-                    let row = &mut arow[q];
                     row_coefficients(row, al, sk);
                     // Known boundary neighbours go to the right-hand side.
                     for b in bs.iter_mut() {
                         b[q] = 0.0;
                     }
-                    if i == 1 || j == 1 || k == 1 || i == ni - 2 || j == nj - 2 || k == nk - 2 {
+                    if ii == 0 || jj == 0 || kk == 0 || ii == nx - 1 || jj == ny - 1 || kk == nz - 1
+                    {
                         for (m, o) in OFFSETS.iter().enumerate().skip(1) {
-                            let (ib, jb, kb) = (
+                            let p = [
                                 (i as isize + o[0] as isize) as usize,
                                 (j as isize + o[1] as isize) as usize,
                                 (k as isize + o[2] as isize) as usize,
-                            );
-                            if ib == 0
-                                || jb == 0
-                                || kb == 0
-                                || ib == ni - 1
-                                || jb == nj - 1
-                                || kb == nk - 1
-                            {
-                                let nb = ib + ni * jb + plane * kb;
+                            ];
+                            if !unknown(p) {
+                                let nb = p[0] + ni * p[1] + plane * p[2];
                                 for (b, xc) in bs.iter_mut().zip(xs.iter()) {
                                     b[q] -= row[m] * xc[nb];
                                 }
@@ -161,6 +144,7 @@ pub fn assemble(x: &Grid3, ctrl: &Control3, a: &mut Stencil19, rhs: &mut [Vec<f6
                 }
             }
         });
+    let _ = nk;
 }
 
 /// Residual of [86] at grid `x`: the largest |A x − b| over interior nodes, each row divided
@@ -197,25 +181,33 @@ fn residual_into(
 
 /// Interior values of coordinate c into `out` (unknown order).
 pub fn gather(x: &Grid3, c: usize, out: &mut [f64]) {
-    let [ni, nj, _] = x.dims();
-    let nx = ni - 2;
+    gather_in(x, &Symmetry::none(), c, out)
+}
+
+/// Values of coordinate c at the unknowns (interior nodes and those of symmetry faces, `sym`)
+/// into `out` (unknown order).
+fn gather_in(x: &Grid3, sym: &Symmetry, c: usize, out: &mut [f64]) {
+    let dims = x.dims();
+    let [ni, nj, _] = dims;
+    let (lo, n) = sym.unknown_box(dims);
     let full = x.coord(c);
-    for (q, row) in out.chunks_mut(nx).enumerate() {
-        let (jj, kk) = (q % (nj - 2), q / (nj - 2));
-        let base = 1 + ni * (jj + 1) + ni * nj * (kk + 1);
-        row.copy_from_slice(&full[base..base + nx]);
+    for (q, row) in out.chunks_mut(n[0]).enumerate() {
+        let (jj, kk) = (q % n[1], q / n[1]);
+        let base = lo[0] + ni * (jj + lo[1]) + ni * nj * (kk + lo[2]);
+        row.copy_from_slice(&full[base..base + n[0]]);
     }
 }
 
-/// Adds the interior correction `inner` to coordinate c of `x`.
-fn add_interior(x: &mut Grid3, c: usize, inner: &[f64]) {
-    let [ni, nj, _] = x.dims();
-    let nx = ni - 2;
+/// Adds the correction `inner` (unknown numbering) to coordinate c of `x`.
+fn add_interior(x: &mut Grid3, sym: &Symmetry, c: usize, inner: &[f64]) {
+    let dims = x.dims();
+    let [ni, nj, _] = dims;
+    let (lo, n) = sym.unknown_box(dims);
     let full = &mut x.coords_mut()[c];
-    for (q, row) in inner.chunks(nx).enumerate() {
-        let (jj, kk) = (q % (nj - 2), q / (nj - 2));
-        let base = 1 + ni * (jj + 1) + ni * nj * (kk + 1);
-        for (o, d) in full[base..base + nx].iter_mut().zip(row) {
+    for (q, row) in inner.chunks(n[0]).enumerate() {
+        let (jj, kk) = (q % n[1], q / n[1]);
+        let base = lo[0] + ni * (jj + lo[1]) + ni * nj * (kk + lo[2]);
+        for (o, d) in full[base..base + n[0]].iter_mut().zip(row) {
             *o += d;
         }
     }
@@ -251,6 +243,31 @@ pub fn solve(
     .map(|(info, _)| info)
 }
 
+/// [`solve`] with symmetry faces ([`crate::elliptic::symmetry3d`]): their nodes slide in
+/// their planes and the grid lines meet them at right angles. The nodes of `x` on those
+/// faces must lie on their planes (they are the start of their iteration).
+pub fn solve_symmetric(
+    x: &mut Grid3,
+    ctrl: &Control3,
+    sym: &Symmetry,
+    solver: &mut dyn LinearSolver<Stencil19>,
+    params: &PicardParams,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<PicardInfo> {
+    solve_in(
+        x,
+        ctrl,
+        sym,
+        solver,
+        params,
+        picard::Rules::stop(0.0),
+        place,
+        progress,
+    )
+    .map(|(info, _)| info)
+}
+
 /// [`solve`], also returning the shortest time (seconds) of one evaluation of the residual of
 /// [86] with its assembly ([`assemble`] + residual) on this grid, measured at every step: the
 /// work unit of [`crate::elliptic::nested3d`]. With `rules.relative_stop > 0` the iteration also stops
@@ -259,6 +276,30 @@ pub fn solve(
 pub(crate) fn solve_timed(
     x: &mut Grid3,
     ctrl: &Control3,
+    solver: &mut dyn LinearSolver<Stencil19>,
+    params: &PicardParams,
+    rules: picard::Rules,
+    place: &str,
+    progress: &mut dyn FnMut(usize, &PicardStep),
+) -> Result<(PicardInfo, f64)> {
+    solve_in(
+        x,
+        ctrl,
+        &Symmetry::none(),
+        solver,
+        params,
+        rules,
+        place,
+        progress,
+    )
+}
+
+/// [`solve_timed`] with symmetry faces.
+#[allow(clippy::too_many_arguments)]
+fn solve_in(
+    x: &mut Grid3,
+    ctrl: &Control3,
+    sym: &Symmetry,
     solver: &mut dyn LinearSolver<Stencil19>,
     params: &PicardParams,
     rules: picard::Rules,
@@ -274,30 +315,70 @@ pub(crate) fn solve_timed(
         ctrl.all_finite(),
     )?;
     let diam = x.diameter();
-    let a = Stencil19::zeros(dims[0] - 2, dims[1] - 2, dims[2] - 2);
-    let n = a.len();
+    let mut groups = Vec::new();
+    for (m, (gsym, coords)) in sym.groups().into_iter().enumerate() {
+        let (_, [nx, ny, nz]) = gsym.unknown_box(dims);
+        let n = nx * ny * nz;
+        let own = if m == 0 {
+            None
+        } else {
+            Some(solver.companion().ok_or_else(|| {
+                crate::Error::input(
+                    place,
+                    format!(
+                        "symmetry faces need a linear solver that can make a second one, not {}",
+                        solver.name()
+                    ),
+                )
+            })?)
+        };
+        groups.push(Group {
+            sym: gsym,
+            coords,
+            a: Stencil19::zeros(nx, ny, nz),
+            rhs: std::array::from_fn(|_| vec![0.0; n]),
+            solver: own,
+        });
+    }
+    let len = |c: usize| {
+        let g = groups
+            .iter()
+            .find(|g| g.coords.contains(&c))
+            .expect("every coordinate");
+        g.a.len()
+    };
+    let most = (0..3).map(len).max().unwrap_or(0);
     let mut sys = System3 {
+        r: std::array::from_fn(|c| vec![0.0; len(c)]),
+        u: std::array::from_fn(|c| vec![0.0; len(c)]),
         x,
         ctrl,
         solver,
-        a,
-        rhs: std::array::from_fn(|_| vec![0.0; n]),
-        r: std::array::from_fn(|_| vec![0.0; n]),
-        u: std::array::from_fn(|_| vec![0.0; n]),
-        scratch: vec![0.0; n],
+        groups,
+        scratch: vec![0.0; most],
         diam,
     };
     picard::run(&mut sys, params, rules, place, progress)
 }
 
-/// The Picard system of one volume block: iterate, frozen operator, right-hand sides, and the
-/// residuals b − A x_k and corrections δ of the coordinates (interior numbering).
+/// Coordinates solved with one operator: those whose symmetry faces (the faces they slide
+/// along, [`Symmetry::groups`]) are the same. The first group's solver is the block's own.
+struct Group {
+    sym: Symmetry,
+    coords: Vec<usize>,
+    a: Stencil19,
+    rhs: [Vec<f64>; 3],
+    solver: Option<Box<dyn LinearSolver<Stencil19>>>,
+}
+
+/// The Picard system of one volume block: iterate, frozen operators, right-hand sides, and
+/// the residuals b − A x_k and corrections δ of the coordinates (unknown numbering of each
+/// coordinate's group).
 struct System3<'a> {
     x: &'a mut Grid3,
     ctrl: &'a Control3,
     solver: &'a mut dyn LinearSolver<Stencil19>,
-    a: Stencil19,
-    rhs: [Vec<f64>; 3],
+    groups: Vec<Group>,
     r: [Vec<f64>; 3],
     u: [Vec<f64>; 3],
     scratch: Vec<f64>,
@@ -308,38 +389,66 @@ impl picard::System for System3<'_> {
     type Op = Stencil19;
 
     fn evaluate(&mut self) -> f64 {
-        if self.a.is_empty() {
-            // the solver took the operator over at the last `prepare`
-            let d = self.x.dims();
-            let dims = [d[0] - 2, d[1] - 2, d[2] - 2];
-            self.a = match self.solver.give_back() {
-                Some(a) if a.dims() == dims => a,
-                _ => Stencil19::zeros(dims[0], dims[1], dims[2]),
-            };
+        let mut worst = 0.0f64;
+        for (m, g) in self.groups.iter_mut().enumerate() {
+            if g.a.is_empty() {
+                // the solver took the operator over at the last `prepare`
+                let (_, dims) = g.sym.unknown_box(self.x.dims());
+                let back = match &mut g.solver {
+                    Some(s) => s.give_back(),
+                    None => self.solver.give_back(),
+                };
+                g.a = match back {
+                    Some(a) if a.dims() == dims => a,
+                    _ => Stencil19::zeros(dims[0], dims[1], dims[2]),
+                };
+            }
+            let _ = m;
+            assemble_with(self.x, self.ctrl, &g.sym, &mut g.a, &mut g.rhs);
+            for &c in &g.coords {
+                let u = &mut self.scratch[..g.a.len()];
+                gather_in(self.x, &g.sym, c, u);
+                g.a.residual(&g.rhs[c], u, &mut self.r[c]);
+                let w = self.r[c]
+                    .par_iter()
+                    .zip(g.a.coefs())
+                    .map(|(rv, row)| (rv / row[C]).abs())
+                    .reduce(|| 0.0, f64::max);
+                worst = worst.max(w);
+            }
         }
-        assemble(self.x, self.ctrl, &mut self.a, &mut self.rhs);
-        residual_into(
-            self.x,
-            &self.a,
-            &self.rhs,
-            self.diam,
-            &mut self.r,
-            &mut self.scratch,
-        )
+        worst / self.diam
     }
 
     fn linear(&mut self) -> picard::Linear<'_, Stencil19> {
-        picard::Linear::new(&mut *self.solver, &self.a, &self.r, &mut self.u)
+        let mut others: [Option<&dyn LinearSolver<Stencil19>>; 3] = [None; 3];
+        for g in &self.groups {
+            if let Some(s) = &g.solver {
+                for &c in &g.coords {
+                    others[c] = Some(s.as_ref());
+                }
+            }
+        }
+        picard::Linear::new(&mut *self.solver, &self.groups[0].a, &self.r, &mut self.u)
+            .with_others(others)
     }
 
-    /// The solver takes the operator over (one copy, not two; taken back by `evaluate`).
+    /// The solvers take the operators over (one copy, not two; taken back by `evaluate`).
     fn prepare(&mut self, small: bool) -> std::result::Result<(), SolveError> {
-        self.solver.adopt(&mut self.a, small)
+        for g in &mut self.groups {
+            match &mut g.solver {
+                Some(s) => s.adopt(&mut g.a, small)?,
+                None => self.solver.adopt(&mut g.a, small)?,
+            }
+        }
+        Ok(())
     }
 
     fn apply(&mut self, largest: f64) -> f64 {
-        for (c, uc) in self.u.iter().enumerate() {
-            add_interior(self.x, c, uc);
+        for g in &self.groups {
+            for &c in &g.coords {
+                add_interior(self.x, &g.sym, c, &self.u[c]);
+            }
         }
         largest / self.diam
     }

@@ -5,6 +5,7 @@
 
 pub mod floating;
 mod mesh;
+mod mirror;
 pub mod model;
 pub mod multiblock;
 pub(crate) mod multiblock_wall;

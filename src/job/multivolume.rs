@@ -68,19 +68,62 @@ pub(super) struct Gridded3 {
 
 /// Grids every face, then every volume, of a volume topology.
 pub(super) fn generate(case: &LoadedCase, topo: &Topology3) -> Result<Gridded3> {
+    let mirrors = super::mirror::mirrors(case, topo)?;
     let (mut grids, faces) = grid_faces(case, topo)?;
     let (done, mut floating) = if case.case.faces.iter().any(|f| f.floating()) {
+        if let Some(b) = mirrors.iter().position(Option::is_some) {
+            return Err(Error::input(
+                topo.volume_place(&case.path.display().to_string(), b),
+                "mirror volumes and floating faces in one topology are not supported yet",
+            ));
+        }
         super::floating::float(case, topo, &mut grids)?
     } else {
-        let done: Vec<(String, Block, VolumeReport)> = (0..topo.volumes.len())
+        let solved: Vec<Option<(String, Block, VolumeReport)>> = (0..topo.volumes.len())
             .into_par_iter()
             .map(|v| {
+                if mirrors[v].is_some() {
+                    return Ok(None);
+                }
                 let t0 = Instant::now();
                 let place = topo.volume_place(&case.path.display().to_string(), v);
                 let f = Faces::new(topo.volume_faces(v, &grids), &place)?;
-                solve_volume(case, v, &f, &place, t0)
+                solve_volume(case, v, &f, &place, t0).map(Some)
             })
             .collect::<Result<_>>()?;
+        // The mirror images first (they read their originals), then every block in order.
+        let mut mirrored: Vec<Option<(String, Block, VolumeReport)>> = Vec::new();
+        for (b, m) in mirrors.iter().enumerate() {
+            let Some(a) = *m else {
+                mirrored.push(None);
+                continue;
+            };
+            let t0 = Instant::now();
+            let (_, block, rep_a) = solved[a].as_ref().expect("an original is solved");
+            let Block::Volume(ga) = block else {
+                unreachable!("volumes are volume blocks")
+            };
+            let (g, deviation) = super::mirror::mirror_volume(case, topo, b, a, ga, &grids)?;
+            let [ni, nj, nk] = g.dims();
+            let rep = VolumeReport {
+                name: volume_name(case, b),
+                ni,
+                nj,
+                nk,
+                seconds: t0.elapsed().as_secs_f64(),
+                picard: rep_a.picard.clone(),
+                quality: crate::quality::quality3d::quality3d(&g),
+                wall: rep_a.wall.clone(),
+                mirror_of: Some(rep_a.name.clone()),
+                mirror_deviation: Some(deviation),
+            };
+            mirrored.push(Some((rep.name.clone(), Block::Volume(g), rep)));
+        }
+        let done: Vec<(String, Block, VolumeReport)> = solved
+            .into_iter()
+            .zip(mirrored)
+            .map(|(s, m)| s.or(m).expect("every volume is solved or mirrored"))
+            .collect();
         (done, vec![None; topo.faces.blocks.len()])
     };
     let (blocks, volumes): (Vec<_>, Vec<_>) = done

@@ -8,7 +8,7 @@ use crate::algebraic::ControlKind;
 use crate::case::spec::VolumeSpec;
 use crate::case::volume::{volume_faces, volume_name, volume_place, wall_face};
 use crate::case::LoadedCase;
-use crate::elliptic::orthogonal3d::{grid_volume_corrected_with, FaceCorrections};
+use crate::elliptic::orthogonal3d::{grid_volume_corrected_with, symmetry_of, FaceCorrections};
 use crate::elliptic::picard::{PicardInfo, PicardParams, VolumeResult};
 use crate::elliptic::poisson3d;
 use crate::elliptic::volume::{grid_volume, progress_enabled};
@@ -38,6 +38,14 @@ pub struct VolumeReport {
     /// distance of the first off-wall nodes over the prescribed spacing.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub wall: Option<WallFigure>,
+    /// A mirrored volume (`mirror = "A"`): the volume it is the mirror image of (its Picard
+    /// history is A's: it had no solve of its own).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mirror_of: Option<String>,
+    /// A mirrored volume: the largest distance of its own boundary nodes (those not on the
+    /// faces shared with its original) from the mirror images of the original's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mirror_deviation: Option<f64>,
 }
 
 /// A terminal progress bar for a Picard solve, if enabled and stderr is a terminal.
@@ -114,7 +122,16 @@ pub(crate) fn solve_volume_from(
     let frozen = frozen.filter(|_| c.any());
     let (r, ctrl, param) = if let (Some(ctrl), Some(mut x)) = (frozen, start.clone()) {
         faces.apply_to(&mut x);
-        let picard = poisson3d::solve(&mut x, &ctrl, solver.as_mut(), params, place, &mut cb)?;
+        let sym = symmetry_of(faces, &c.symmetry, place)?;
+        let picard = poisson3d::solve_symmetric(
+            &mut x,
+            &ctrl,
+            &sym,
+            solver.as_mut(),
+            params,
+            place,
+            &mut cb,
+        )?;
         (VolumeResult { grid: x, picard }, ctrl, None)
     } else if c.any() {
         let (r, ctrl, pg) =
@@ -150,6 +167,8 @@ pub(crate) fn solve_volume_from(
         picard: r.picard,
         quality: q,
         wall,
+        mirror_of: None,
+        mirror_deviation: None,
     };
     Ok((name, Block::Volume(r.grid), rep, ctrl, param))
 }
@@ -161,6 +180,15 @@ pub(crate) fn corrections(
     wall: Option<usize>,
     place: &str,
 ) -> Result<FaceCorrections> {
+    if let Some(a) = &v.mirror {
+        return Err(Error::input(
+            place,
+            format!(
+                "mirror = \"{a}\": this volume is mirrored, not solved on its own (`run` of a \
+                 volume topology, whose volumes name `[[face]]` tables)"
+            ),
+        ));
+    }
     let mut orthogonal = [false; 6];
     for name in &v.orthogonal {
         let f = parse_face(name).ok_or_else(|| {
@@ -195,10 +223,38 @@ pub(crate) fn corrections(
         }
         None => {}
     }
+    let mut symmetry = [false; 6];
+    for name in &v.symmetry {
+        let f = parse_face(name).ok_or_else(|| {
+            Error::input(
+                place,
+                format!("symmetry = [\"{name}\"]: expected faces F1, …, F6"),
+            )
+        })?;
+        if Some(f) == wall || orthogonal[f] {
+            return Err(Error::input(
+                place,
+                format!("symmetry = [\"{name}\"]: a symmetry face cannot also be the wall or orthogonal"),
+            ));
+        }
+        if let Some(w) = wall.filter(|&w| f != w && f != w ^ 1) {
+            return Err(Error::input(
+                place,
+                format!(
+                    "symmetry = [\"{name}\"]: the face shares an edge with the wall {}; the \
+                     wall-spacing passes hold the wall's side faces fixed (a sliding one is not \
+                     supported yet)",
+                    crate::grid::faces::FACE_NAMES[w]
+                ),
+            ));
+        }
+        symmetry[f] = true;
+    }
     Ok(FaceCorrections {
         wall,
         orthogonal,
         profiles,
+        symmetry,
     })
 }
 

@@ -238,6 +238,10 @@ impl LinearSolver<Stencil19> for BiCgStabIlu {
         )
     }
 
+    fn companion(&self) -> Option<Box<dyn LinearSolver<Stencil19>>> {
+        Some(Box::new(BiCgStabIlu::new()))
+    }
+
     fn name(&self) -> &'static str {
         "bicgstab-ilu0"
     }

@@ -374,6 +374,10 @@ impl LinearSolver<Stencil19> for Multigrid3 {
         res
     }
 
+    fn companion(&self) -> Option<Box<dyn LinearSolver<Stencil19>>> {
+        Some(Box::new(Multigrid3::new(self.params.clone())))
+    }
+
     fn name(&self) -> &'static str {
         "multigrid"
     }
