@@ -215,6 +215,11 @@ fn a_mirrored_pair_crosses_its_symmetry_plane_without_a_kink() {
         }
     }
     assert!(moved > 1e-2, "{moved}");
+    // The run's console names the original instead of repeating its history.
+    let o = ellipgrid(d.path(), &["run", "pair.toml", "-o", "p2.x"]);
+    let t = text(&o);
+    assert!(t.contains("the mirror image of 'upper' (not solved"), "{t}");
+    assert_eq!(t.matches(" steps (Picard").count(), 1, "{t}");
     let v = &r["volumes"][1];
     assert_eq!(v["mirror_of"], "upper", "{v}");
     assert_eq!(v["mirror_deviation"], 0.0, "{v}");

@@ -169,7 +169,15 @@ pub fn volume(v: &ellipgrid::job::volume::VolumeReport) {
         "volume '{}' ({} × {} × {} nodes), {:.3} s",
         v.name, v.ni, v.nj, v.nk, v.seconds
     );
-    history(&v.picard);
+    match &v.mirror_of {
+        // not solved: its history is its original's
+        Some(a) => println!(
+            "  the mirror image of '{a}' (not solved; its own boundary within {:.1e} of the \
+             mirror image of '{a}''s)",
+            v.mirror_deviation.unwrap_or(0.0)
+        ),
+        None => history(&v.picard),
+    }
     println!("{}", v.quality);
     if let Some(w) = &v.wall {
         println!(
@@ -178,7 +186,7 @@ pub fn volume(v: &ellipgrid::job::volume::VolumeReport) {
             w.face, w.angle_max_deg, w.angle_mean_deg, w.ratio_min, w.ratio_max, w.nodes
         );
     }
-    if !v.picard.converged {
+    if !v.picard.converged && v.mirror_of.is_none() {
         eprintln!(
             "warning: volume '{}': Picard iteration stopped after {} steps (tolerance {:.1e})",
             v.name, v.picard.steps, v.picard.tolerance
