@@ -47,7 +47,7 @@ pub fn assemble_with(
     rhs: &mut [Vec<f64>; 3],
 ) {
     let dims = x.dims();
-    let [ni, nj, nk] = dims;
+    let [ni, nj, _] = dims;
     let (lo, [nx, ny, nz]) = sym.unknown_box(dims);
     assert_eq!(a.dims(), [nx, ny, nz]);
     let (plane, uplane) = (ni * nj, nx * ny);
@@ -144,7 +144,6 @@ pub fn assemble_with(
                 }
             }
         });
-    let _ = nk;
 }
 
 /// Residual of [86] at grid `x`: the largest |A x − b| over interior nodes, each row divided
@@ -390,7 +389,7 @@ impl picard::System for System3<'_> {
 
     fn evaluate(&mut self) -> f64 {
         let mut worst = 0.0f64;
-        for (m, g) in self.groups.iter_mut().enumerate() {
+        for g in self.groups.iter_mut() {
             if g.a.is_empty() {
                 // the solver took the operator over at the last `prepare`
                 let (_, dims) = g.sym.unknown_box(self.x.dims());
@@ -403,7 +402,6 @@ impl picard::System for System3<'_> {
                     _ => Stencil19::zeros(dims[0], dims[1], dims[2]),
                 };
             }
-            let _ = m;
             assemble_with(self.x, self.ctrl, &g.sym, &mut g.a, &mut g.rhs);
             for &c in &g.coords {
                 let u = &mut self.scratch[..g.a.len()];
