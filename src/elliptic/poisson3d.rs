@@ -230,16 +230,7 @@ pub fn solve(
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<PicardInfo> {
-    solve_timed(
-        x,
-        ctrl,
-        solver,
-        params,
-        picard::Rules::stop(0.0),
-        place,
-        progress,
-    )
-    .map(|(info, _)| info)
+    solve_symmetric(x, ctrl, &Symmetry::none(), solver, params, place, progress)
 }
 
 /// [`solve`] with symmetry faces ([`crate::elliptic::symmetry3d`]): their nodes slide in

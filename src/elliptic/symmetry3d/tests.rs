@@ -14,6 +14,19 @@ fn params() -> PicardParams {
     }
 }
 
+/// A box [0, 2] × [0, 1] × [0, 0.8] of `n` nodes clustered differently along each axis (the
+/// tensor grid: the exact discrete solution).
+fn clustered_box(n: [usize; 3]) -> Grid3 {
+    let at = |a: usize, f: &dyn Fn(f64) -> f64| -> Vec<f64> {
+        (0..n[a]).map(|k| f(k as f64 / (n[a] - 1) as f64)).collect()
+    };
+    Grid3::rectilinear(
+        &at(0, &|t| 2.0 * t.powf(1.5)),
+        &at(1, &|t| (t * 2.0).sinh() / 2.0f64.sinh()),
+        &at(2, &|t| 0.5 * t * t + 0.3 * t),
+    )
+}
+
 /// Solves `x` with the symmetry faces `sym` (Bi-CGSTAB) to `p`, asserting convergence.
 fn solved(x: &mut Grid3, ctrl: &Control3, sym: &Symmetry, p: &PicardParams) {
     let info = solve_symmetric(
@@ -53,14 +66,7 @@ fn off_half(half: &Grid3, whole: &Grid3, m: usize) -> f64 {
 /// With the face held instead, the moved face stays.
 #[test]
 fn a_clustered_box_slides_back_to_its_tensor_grid() {
-    let xs: Vec<f64> = (0..13).map(|k| 2.0 * (k as f64 / 12.0).powf(1.5)).collect();
-    let ys: Vec<f64> = (0..11)
-        .map(|k| ((k as f64 / 10.0) * 2.0).sinh() / 2.0f64.sinh())
-        .collect();
-    let zs: Vec<f64> = (0..9)
-        .map(|k| 0.5 * (k as f64 / 8.0).powi(2) + 0.3 * k as f64 / 8.0)
-        .collect();
-    let exact = Grid3::rectilinear(&xs, &ys, &zs);
+    let exact = clustered_box([13, 11, 9]);
     let faces = Faces::from_grid(&exact);
     let ctrl = control_for(&faces, ControlKind::Algebraic, "box").unwrap();
     let face = SymmetryFace::of_grid(&exact, 2, "box").unwrap();
@@ -147,14 +153,7 @@ fn moved(exact: &Grid3, sym: &[SymmetryFace]) -> Grid3 {
 /// sides that meet: it returns to its tensor grid from moved nodes.
 #[test]
 fn every_side_of_a_box_slides() {
-    let xs: Vec<f64> = (0..9).map(|k| 2.0 * (k as f64 / 8.0).powf(1.5)).collect();
-    let ys: Vec<f64> = (0..8)
-        .map(|k| ((k as f64 / 7.0) * 2.0).sinh() / 2.0f64.sinh())
-        .collect();
-    let zs: Vec<f64> = (0..7)
-        .map(|k| 0.5 * (k as f64 / 6.0).powi(2) + 0.3 * k as f64 / 6.0)
-        .collect();
-    let exact = Grid3::rectilinear(&xs, &ys, &zs);
+    let exact = clustered_box([9, 8, 7]);
     let faces = Faces::from_grid(&exact);
     let ctrl = control_for(&faces, ControlKind::Algebraic, "box").unwrap();
     let sets: Vec<Vec<usize>> = (1..=6)
