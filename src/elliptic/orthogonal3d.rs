@@ -122,6 +122,31 @@ pub struct AlgebraicMap<'a> {
     pub controls: &'a dyn Fn(&ParamGrid3) -> Control3,
 }
 
+/// What every solve of a block's passes shares: how the control functions follow from the
+/// algebraic map, the symmetry faces and the block's name for errors.
+struct Solves<'a> {
+    controls: &'a dyn Fn(&ParamGrid3) -> Control3,
+    sym: &'a Symmetry,
+    place: &'a str,
+}
+
+impl Solves<'_> {
+    /// Solves [86] for `x` with the control functions of `pg` (the symmetry faces' from `pg`
+    /// continued across them), starting from `x`.
+    fn run(
+        &self,
+        x: &mut Grid3,
+        pg: &ParamGrid3,
+        solver: &mut dyn LinearSolver<Stencil19>,
+        params: &PicardParams,
+        progress: &mut dyn FnMut(usize, &PicardStep),
+    ) -> Result<PicardInfo> {
+        let ctrl = (self.controls)(pg);
+        let sym = self.sym.with_controls(pg);
+        poisson3d::solve_symmetric(x, &ctrl, &sym, solver, params, self.place, progress)
+    }
+}
+
 /// [`grid_volume_corrected_with`] with the wall's goal columns given (`targets`, for
 /// `c.wall`) instead of taken from the faces: the strip across a floating face between two
 /// wall volumes holds its volumes' goals ([`crate::elliptic::floating3d`]).
@@ -149,6 +174,11 @@ pub fn grid_volume_corrected_to(
     };
     let mut info: Option<PicardInfo> = None;
     let sym = symmetry_of(faces, &c.symmetry, place)?;
+    let solves = Solves {
+        controls,
+        sym: &sym,
+        place,
+    };
     // Pass 0: the uncorrected grid (nested iteration from the faces, or from `start`; with
     // symmetry faces, the plain iteration from the transfinite grid).
     let start = match start {
@@ -159,18 +189,9 @@ pub fn grid_volume_corrected_to(
         Some(g) if g.dims() == faces.dims() => {
             let mut x = g;
             faces.apply_to(&mut x);
-            let ctrl = controls(&pg);
             append(
                 &mut info,
-                poisson3d::solve_symmetric(
-                    &mut x,
-                    &ctrl,
-                    &sym.with_controls(&pg),
-                    solver,
-                    &loose,
-                    place,
-                    progress,
-                )?,
+                solves.run(&mut x, &pg, solver, &loose, progress)?,
             );
             x
         }
@@ -201,18 +222,9 @@ pub fn grid_volume_corrected_to(
             Err(_) => {
                 let mut x = transfinite(faces);
                 faces.apply_to(&mut x);
-                let ctrl = controls(&pg);
                 append(
                     &mut info,
-                    poisson3d::solve_symmetric(
-                        &mut x,
-                        &ctrl,
-                        &sym.with_controls(&pg),
-                        solver,
-                        &loose,
-                        place,
-                        progress,
-                    )?,
+                    solves.run(&mut x, &pg, solver, &loose, progress)?,
                 );
                 x
             }
@@ -280,16 +292,7 @@ pub fn grid_volume_corrected_to(
         }
         if done || last {
             // A final solve to the asked tolerance from the current grid.
-            let ctrl = controls(&pg);
-            let step = poisson3d::solve_symmetric(
-                &mut x,
-                &ctrl,
-                &sym.with_controls(&pg),
-                solver,
-                params,
-                place,
-                progress,
-            );
+            let step = solves.run(&mut x, &pg, solver, params, progress);
             let fine = step.is_ok() && (ortho.is_empty() || score(&x).0 == 0);
             let (bpg, bx) = match (step, best.take()) {
                 (Ok(step), _) if fine => {
@@ -305,18 +308,9 @@ pub fn grid_volume_corrected_to(
             };
             // The orthogonal passes folded the grid: back to the best fold-free one.
             (pg, x) = (bpg, bx);
-            let ctrl = controls(&pg);
             append(
                 &mut info,
-                poisson3d::solve_symmetric(
-                    &mut x,
-                    &ctrl,
-                    &sym.with_controls(&pg),
-                    solver,
-                    params,
-                    place,
-                    progress,
-                )?,
+                solves.run(&mut x, &pg, solver, params, progress)?,
             );
             break;
         }
@@ -338,15 +332,8 @@ pub fn grid_volume_corrected_to(
                     ),
                 ));
             }
-            poisson3d::solve_symmetric(
-                x,
-                &ctrl,
-                &sym.with_controls(pg),
-                solver,
-                &loose,
-                place,
-                progress,
-            )
+            let sym = sym.with_controls(pg);
+            poisson3d::solve_symmetric(x, &ctrl, &sym, solver, &loose, place, progress)
         };
         let x_before = x.clone();
         let mut solved = attempt(&pg, &mut x);
@@ -372,16 +359,7 @@ pub fn grid_volume_corrected_to(
                 // A failed orthogonal pass: finish from the best fold-free grid.
                 Some((_, bpg, bx)) => {
                     (pg, x) = (bpg, bx);
-                    let ctrl = controls(&pg);
-                    let step = poisson3d::solve_symmetric(
-                        &mut x,
-                        &ctrl,
-                        &sym.with_controls(&pg),
-                        solver,
-                        params,
-                        place,
-                        progress,
-                    )?;
+                    let step = solves.run(&mut x, &pg, solver, params, progress)?;
                     append(&mut info, step);
                     break;
                 }
