@@ -186,30 +186,34 @@ pub fn gather(x: &Grid3, c: usize, out: &mut [f64]) {
 /// Values of coordinate c at the unknowns (interior nodes and those of symmetry faces, `sym`)
 /// into `out` (unknown order).
 fn gather_in(x: &Grid3, sym: &Symmetry, c: usize, out: &mut [f64]) {
-    let dims = x.dims();
-    let [ni, nj, _] = dims;
-    let (lo, n) = sym.unknown_box(dims);
+    let (len, starts) = box_rows(x.dims(), sym);
     let full = x.coord(c);
-    for (q, row) in out.chunks_mut(n[0]).enumerate() {
-        let (jj, kk) = (q % n[1], q / n[1]);
-        let base = lo[0] + ni * (jj + lo[1]) + ni * nj * (kk + lo[2]);
-        row.copy_from_slice(&full[base..base + n[0]]);
+    for (row, at) in out.chunks_mut(len).zip(starts) {
+        row.copy_from_slice(&full[at..at + len]);
     }
 }
 
 /// Adds the correction `inner` (unknown numbering) to coordinate c of `x`.
 fn add_interior(x: &mut Grid3, sym: &Symmetry, c: usize, inner: &[f64]) {
-    let dims = x.dims();
-    let [ni, nj, _] = dims;
-    let (lo, n) = sym.unknown_box(dims);
+    let (len, starts) = box_rows(x.dims(), sym);
     let full = &mut x.coords_mut()[c];
-    for (q, row) in inner.chunks(n[0]).enumerate() {
-        let (jj, kk) = (q % n[1], q / n[1]);
-        let base = lo[0] + ni * (jj + lo[1]) + ni * nj * (kk + lo[2]);
-        for (o, d) in full[base..base + n[0]].iter_mut().zip(row) {
+    for (row, at) in inner.chunks(len).zip(starts) {
+        for (o, d) in full[at..at + len].iter_mut().zip(row) {
             *o += d;
         }
     }
+}
+
+/// The unknown box's rows along i ([`Symmetry::unknown_box`]): their length and, in the
+/// unknowns' order, the grid index of each row's first node.
+fn box_rows(dims: [usize; 3], sym: &Symmetry) -> (usize, impl Iterator<Item = usize>) {
+    let [ni, nj, _] = dims;
+    let (lo, n) = sym.unknown_box(dims);
+    let starts = (0..n[1] * n[2]).map(move |q| {
+        let (jj, kk) = (q % n[1], q / n[1]);
+        lo[0] + ni * (jj + lo[1]) + ni * nj * (kk + lo[2])
+    });
+    (n[0], starts)
 }
 
 /// Solves the grid system [86] by Picard iteration from the start grid `x` (whose boundary
