@@ -79,14 +79,14 @@ ALLOWED = {
     # The ONERA M6 four-block C-O grid (examples/m6): the same wall cells, seen by checkMesh
     # where their faces are normal to the axes (max 2252 at full size, 178 cells, all in the
     # two wing volumes, mirror images, in the first 6 wall layers at 0.25-0.53 local chord):
-    # 128 on the cap next to the tip edge (k = 38..47 of 48) and 50 inboard (k = 0..1,
+    # 134 on the cap next to the tip edge (k = 38..47 of 48) and 44 inboard (k = 0..1,
     # 10..17) where a cell straddles the section's maximum thickness (x/c 0.35-0.43, zero
     # slope). Their true ratio (chordwise step 0.034 chord / first height) is ~2300 at
     # mid-chord along the whole span (17 760 of each wing volume's 196 608 cells above 1000;
     # the wake volumes 397 at most): below 1000 needs steps under 0.014 chord at mid-chord
     # (mean 0.016), inherent to 1e-5 chord with 64 chordwise intervals clustered at the
     # leading and trailing edges. No highly skewed face since the spanwise steps at the tip
-    # match those beyond the 180-degree edges (max skewness 3.69; docs/ONERA_M6.md, "No highly
+    # match those beyond the 180-degree edges (max skewness 3.51; docs/ONERA_M6.md, "No highly
     # skewed faces").
     "wing_m6_4block": [HIGH_ASPECT],
 }

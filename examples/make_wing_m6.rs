@@ -41,7 +41,7 @@
 //! 3°. The spanwise steps at the tip match the steps beyond the 180° edges of the wing
 //! plane (below, "Along the span"): checkMesh finds no highly skewed face (it found 64, max
 //! skewness 5.35, with 1.2e-3 everywhere). Left: the kinks across the other faces between the
-//! volumes (means 50–63° at full size: those faces are gridded on their own before the
+//! volumes (means 42–62° at full size: those faces are gridded on their own before the
 //! volumes; docs/ONERA_M6.md).
 
 /// The volumes that are the mirror images of others in the wing plane z = 0 (the ONERA D

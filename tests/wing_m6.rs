@@ -24,18 +24,21 @@ fn small_case() -> String {
 
 /// All four volumes fold-free (only the cells along the 180° edges have a zero corner, by
 /// topology); at the wing the first node within 1 % of the prescribed 1e-5 … 2e-5 local chord
-/// (measured 0.998 … 1.001) and the grid lines within 1° of the wall normal (measured 0.30°
+/// (measured 0.999 … 1.001) and the grid lines within 1° of the wall normal (measured 0.19°
 /// at most; 7.5° and 0.911 before the interior faces lost their
 /// orthogonality goals); the grid lines cross the interior faces with the mean kinks measured
-/// (degrees) ahead 60.6, tipplane 64.3, te_up 46.2, wakesheet 3.6 (sliding; 18.4 fixed),
-/// waketip 66.6 since the spanwise steps at the tip match those beyond the 180° edges (ahead
+/// (degrees) ahead 56.8, tipplane 59.8, te_up 39.0, wakesheet 3.6 (sliding; 18.4 fixed),
+/// waketip 66.6 since the wall columns' first-height scaling fades in the node index (ahead
+/// 60.6, tipplane 64.3, te_up 46.2 before; `elliptic::wall_profile::SCALE_REACH`); since the
+/// spanwise steps at the tip match those beyond the 180° edges (ahead
 /// 55.5, tipplane 68.3, te_up 52.0, wakesheet 2.2, waketip 75.4 before; 57.8, 62.6, 69.2
 /// across the first three before the wing volumes' wall columns
 /// followed the side faces' profiles, `wall_profiles = "faces"`, and the wing faces lost their
 /// orthogonality at the trailing edge; 84.6, 92.1, 57.5, 77.1 and 105.3 before the far wake
 /// took the wake sheet's streamwise distribution and those faces their orthogonality goals
-/// were dropped) and the first-spacing ratio across te_up at most 4.1 (9.5 with the wall
-/// correction's former blend, 6.7 then with the spanwise
+/// were dropped) and the first-spacing ratio across te_up at most 1.95 (4.1 with the distance
+/// weight of the first-height scaling, 9.5 with the wall correction's former blend, 6.7 then
+/// with the spanwise
 /// step 1.2e-3 at the tip, 14.8 before the wall columns followed the faces); the lower
 /// volumes are the mirror images of the upper ones, bit for bit (the ONERA D section is
 /// symmetric: they are mirrored, not solved); the connectivity lists the interfaces.
@@ -65,11 +68,14 @@ fn four_block_c_o_grid_is_fold_free_and_holds_the_wall_spacing() {
     }
     for v in &vols[..2] {
         // The wall correction's goals blend into the elliptic grid by v ≈ 0.1 of the column
-        // (`elliptic::wall::BLEND_POWER`): largest growth ratios along i and k 3.55 and 5.97
-        // (7.27 and 7.38 with the former blend (1 − v)³, which held the edges' profile far out).
+        // (`elliptic::wall::BLEND_POWER`) and the first-height scaling of the side faces'
+        // profiles fades in the node index (`elliptic::wall_profile::SCALE_REACH`): largest
+        // growth ratios along i and k 2.23 and 5.75 (3.55 and 5.97 with the scaling's former
+        // distance weight, 7.27 and 7.38 with the former blend (1 − v)³, which held the edges'
+        // profile far out).
         let q = &v["quality"];
-        assert!(q["growth_i_max"].as_f64().unwrap() < 4.0, "{q}");
-        assert!(q["growth_k_max"].as_f64().unwrap() < 6.6, "{q}");
+        assert!(q["growth_i_max"].as_f64().unwrap() < 2.5, "{q}");
+        assert!(q["growth_k_max"].as_f64().unwrap() < 6.3, "{q}");
         let w = &v["wall"];
         let (lo, hi) = (
             w["ratio_min"].as_f64().unwrap(),
@@ -83,16 +89,17 @@ fn four_block_c_o_grid_is_fold_free_and_holds_the_wall_spacing() {
     // with about 10 % margin. The wake sheet is a symmetry face of the upper wake volume,
     // mirrored below: 3.60° (as when it floated; 2.16° floating with the spanwise step
     // 1.2e-3 at the tip, 18.4° fixed); the wake tip 66.6° (75.4° with 1.2e-3, 70.7° with the
-    // sheet fixed). ahead 60.6°, tipplane 64.3°, te_up/lo 46.2° (59.8°, 67.4°, 52.2° with the
+    // sheet fixed). ahead 56.8°, tipplane 59.8°, te_up/lo 39.0° (60.6°, 64.3°, 46.2° with the
+    // first-height scaling's distance weight; 59.8°, 67.4°, 52.2° with the
     // wall correction's former blend (1 − v)³; 55.5°, 68.3°, 52.0° with
     // 1.2e-3; 57.8°, 62.6°, 69.2° with the wall columns from the edges and the wing faces
     // orthogonal at the trailing edge).
     let kinks = r["face_interfaces"].as_array().unwrap();
     for (face, bound) in [
-        ("ahead", 66.0),
-        ("tipplane", 71.0),
-        ("te_up", 51.0),
-        ("te_lo", 51.0),
+        ("ahead", 62.0),
+        ("tipplane", 66.0),
+        ("te_up", 43.0),
+        ("te_lo", 43.0),
         ("wakesheet", 4.0),
         ("waketip", 73.0),
     ] {
@@ -100,12 +107,13 @@ fn four_block_c_o_grid_is_fold_free_and_holds_the_wall_spacing() {
         let mean = f["kink_mean_deg"].as_f64().unwrap();
         assert!(mean < bound, "{face}: mean kink {mean}° (bound {bound}°)");
     }
-    // First-spacing ratio across the trailing-edge face: 4.07 at most (9.45 with the former
-    // blend (1 − v)³, 6.67 then with the spanwise step 1.2e-3 at the tip, 14.8 before the wall
-    // columns followed the faces).
+    // First-spacing ratio across the trailing-edge face: 1.95 at most (4.07 with the
+    // first-height scaling's distance weight, 9.45 with the former blend (1 − v)³, 6.67 then
+    // with the spanwise step 1.2e-3 at the tip, 14.8 before the wall columns followed the
+    // faces).
     let te = kinks.iter().find(|f| f["face"] == "te_up").unwrap();
     let ratio = te["spacing_ratio_max"].as_f64().unwrap();
-    assert!(ratio < 4.5, "te_up: first-spacing ratio {ratio}");
+    assert!(ratio < 2.2, "te_up: first-spacing ratio {ratio}");
     // The lower volumes are mirrored, not solved; their own boundaries (the lower wing and
     // far-field faces, gridded on their nets) are the mirror images of the upper ones' exactly.
     for (v, a) in [(1, "wing_up"), (3, "wake_up")] {
