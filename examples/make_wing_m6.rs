@@ -40,9 +40,11 @@
 //! sliding in the wing plane; the lower volumes are the upper ones' mirror images) to about
 //! 3°. The spanwise steps at the tip match the steps beyond the 180° edges of the wing
 //! plane (below, "Along the span"): checkMesh finds no highly skewed face (it found 64, max
-//! skewness 5.35, with 1.2e-3 everywhere). Left: the kinks across the other faces between the
-//! volumes (means 42–62° at full size: those faces are gridded on their own before the
-//! volumes; docs/ONERA_M6.md).
+//! skewness 5.35, with 1.2e-3 everywhere). The upper wing volume's lines cross `ahead` and
+//! `tipplane` at right angles (`CROSSINGS` below): mean kinks 23.5° and 40.6° at full size
+//! (53.9° and 54.4° before). Left: the kinks across the other faces between the volumes
+//! (`te_up`/`te_lo` 41.8°, `waketip` 61.6° at full size: those faces are gridded on their own
+//! before the volumes; docs/ONERA_M6.md).
 
 /// The volumes that are the mirror images of others in the wing plane z = 0 (the ONERA D
 /// section is symmetric): the lower wing volume of the upper one, the lower wake volume of the
@@ -53,10 +55,20 @@ const MIRRORS: [(&str, &str); 2] = [("wing_lo", "wing_up"), ("wake_lo", "wake_up
 /// meet it as the whole grid's cross it): the wake sheet, F3 of the upper wake volume (mean
 /// kink 18.4° fixed, 3.6° sliding at 33 × 33 × 25; 3.2° at full size, as the floating sheet
 /// before it at a third of the run time). `ahead` and `tipplane` share edges with the wall,
-/// whose passes hold their side faces; `waketip` as a symmetry face folds the cells next to
+/// whose passes hold their side faces (they are crossed at right angles instead, `CROSSINGS`);
+/// `waketip` as a symmetry face folds the cells next to
 /// the 180° edge at the tip (its nodes are asked to lie under inner nodes that are inboard
 /// of the edge; docs/ONERA_M6.md).
 const SYMMETRY: [(&str, &str); 1] = [("wake_up", "F3")];
+
+/// The side faces of a wall that the grid lines cross at right angles, held by the wall's own
+/// passes (`ellipgrid::elliptic::crossing`): `ahead` (F2) and `tipplane` (F6) of the upper
+/// wing volume, whose mirror image the lower one is, so that a right angle there is a smooth
+/// crossing. Mean kinks at full size 53.9 → 23.5° (`ahead`) and 54.4 → 40.6° (`tipplane`),
+/// the wall figures and the run time unchanged (docs/ONERA_M6.md, "Crossing faces"). Not
+/// `te_up`: the wake volume beyond it is not a mirror image, and made orthogonal on the wing
+/// side only the lines left the wall 4° off its normal (33 × 33 × 25).
+const CROSSINGS: [(&str, &str); 1] = [("wing_up", "\"F2\", \"F6\"")];
 
 #[path = "common/wing_co_shape.rs"]
 mod shape;
@@ -339,8 +351,9 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
          # and left the tip's leading edge 7.5° off the wall normal. Then the four volumes\n\
          # (Section 5) with the wall spacing held at the wing (wall = \"F3\"), by Bi-CGSTAB\n\
          # (the 3D multigrid diverges on these volumes), the wall columns following the\n\
-         # side faces' profiles (wall_profiles = \"faces\"). No orthogonality at the interior\n\
-         # faces in the volumes: those passes do not converge yet (README, \"ONERA M6\").\n\
+         # side faces' profiles (wall_profiles = \"faces\"). The upper wing volume's lines\n\
+         # cross ahead and tipplane at right angles (orthogonal = [\"F2\", \"F6\"], held by\n\
+         # the wall's passes; its mirror image below makes that a smooth crossing).\n\
          # The lower volumes are the mirror images of the upper ones in the wing plane\n\
          # (mirror = ...: not solved), and the wake sheet is a symmetry face of the upper\n\
          # wake volume (symmetry = [\"F3\"]): its nodes slide in z = 0 and the grid lines\n\
@@ -869,6 +882,11 @@ fn case_text(nets: &str, case_dir_depth: usize, [ni, nj, nk]: [usize; 3], wall: 
         for (v, f) in SYMMETRY {
             if v == *name {
                 writeln!(t, "symmetry = [\"{f}\"]").unwrap();
+            }
+        }
+        for (v, f) in CROSSINGS {
+            if v == *name {
+                writeln!(t, "orthogonal = [{f}]").unwrap();
             }
         }
         for (v, a) in MIRRORS {

@@ -81,15 +81,24 @@ pub fn interfaces(list: &[ellipgrid::job::multiblock::InterfaceReport]) {
 pub fn face_interfaces(list: &[ellipgrid::job::multivolume::FaceInterfaceReport]) {
     let notes: Vec<String> = list
         .iter()
-        .map(|f| match &f.floating {
-            Some(h) => format!(
-                "  (floating{}: {} rounds, last move {:.1e}{})",
-                if h.planar { ", planar" } else { "" },
-                h.rounds,
-                h.updates.last().copied().unwrap_or(0.0),
-                if h.converged { "" } else { ", not converged" }
-            ),
-            None => String::new(),
+        .map(|f| {
+            let next = match (
+                f.smoothness.turn_next_max_deg,
+                f.smoothness.turn_next_mean_deg,
+            ) {
+                (Some(m), Some(a)) => format!("  next node turns {m:.1} / {a:.1}"),
+                _ => String::new(),
+            };
+            next + &match &f.floating {
+                Some(h) => format!(
+                    "  (floating{}: {} rounds, last move {:.1e}{})",
+                    if h.planar { ", planar" } else { "" },
+                    h.rounds,
+                    h.updates.last().copied().unwrap_or(0.0),
+                    if h.converged { "" } else { ", not converged" }
+                ),
+                None => String::new(),
+            }
         })
         .collect();
     smoothness_table(

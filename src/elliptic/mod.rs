@@ -19,6 +19,7 @@
 //! | wall spacing along edges of 2D blocks | — | [`wall2d`] |
 //! | floating interior faces of a volume topology (the strip across a face) | [86]–[88] | [`floating3d`] |
 pub mod anderson;
+pub mod crossing;
 pub mod domain;
 pub mod floating3d;
 pub mod harmonic;

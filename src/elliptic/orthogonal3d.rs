@@ -21,6 +21,7 @@ use crate::algebraic::control3d::Control3;
 use crate::algebraic::flat_edge::edge_functions;
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
+use crate::elliptic::crossing::Crossings;
 use crate::elliptic::picard::{append, PicardInfo, PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::symmetry3d::{Symmetry, SymmetryFace};
 use crate::elliptic::wall::{
@@ -162,7 +163,15 @@ pub fn grid_volume_corrected_to(
     place: &str,
     progress: &mut dyn FnMut(usize, &PicardStep),
 ) -> Result<(VolumeResult, Control3, ParamGrid3)> {
-    let ortho: Vec<usize> = (0..6).filter(|&f| c.orthogonal[f]).collect();
+    // Orthogonal side faces of an orthogonal wall are held by the wall's own passes
+    // (`elliptic::crossing`): separate passes at them would move the parameters the wall's remap sets.
+    let crossings = c
+        .wall
+        .filter(|&w| c.orthogonal[w])
+        .and_then(|w| Crossings::new(w, &c.orthogonal));
+    let ortho: Vec<usize> = (0..6)
+        .filter(|&f| c.orthogonal[f] && !crossings.is_some_and(|cr| cr.crosses(f)))
+        .collect();
     let AlgebraicMap {
         param: mut pg,
         controls,
@@ -266,7 +275,9 @@ pub fn grid_volume_corrected_to(
             tangent_goals = ortho
                 .iter()
                 .map(|&f| {
-                    let mut g = TangentGoals::new(&pg, &x, f, Some(f) != c.wall);
+                    let wall = Some(f) == c.wall;
+                    let cr = crossings.as_ref().filter(|_| wall);
+                    let mut g = TangentGoals::new(&pg, &x, f, !wall, cr);
                     if ortho.len() > 1 {
                         g.cutoff = LAYER_CUTOFF;
                     }
@@ -277,7 +288,7 @@ pub fn grid_volume_corrected_to(
         let err = match (&targets, c.wall) {
             (Some(t), Some(w)) => {
                 let tg = tangent_goals.iter().find(|(f, _)| *f == w).map(|g| &g.1);
-                remap_volume(&mut trial, &x, t, &mut goal, tg)
+                remap_volume(&mut trial, &x, t, &mut goal, tg, crossings.as_ref())
             }
             _ => 0.0,
         };

@@ -33,6 +33,7 @@
 use crate::algebraic::bilinear3d::{bilinear, EdgeFunctions3, ParamGrid3};
 use crate::algebraic::transform::ParamGrid;
 use crate::algebraic::ControlKind;
+use crate::elliptic::crossing::Crossings;
 use crate::elliptic::orthogonal3d::{grid_volume_corrected, FaceCorrections};
 use crate::elliptic::picard::VolumeResult;
 use crate::elliptic::picard::{PicardParams, PicardStep};
@@ -395,13 +396,16 @@ pub fn correct_side_faces(
 /// One correction pass over the interior columns of a volume: remaps the normal parameter of
 /// `pg` from the distances in `x` towards the column goals (filled from the first grid seen,
 /// the uncorrected one, if empty). Returns the largest |ln(goal/d)| before the pass.
-/// With `ortho`, distances are measured as [`wall_normal::TangentGoals::distance`].
+/// With `ortho`, distances are measured as [`wall_normal::TangentGoals::distance`]; with
+/// `crossings`, the goals of the columns next to the crossed side faces follow them
+/// ([`Crossings::goal_distances`]).
 pub(crate) fn remap_volume(
     pg: &mut ParamGrid3,
     x: &Grid3,
     targets: &WallTargets,
     goal: &mut Vec<Vec<f64>>,
     ortho: Option<&wall_normal::TangentGoals>,
+    crossings: Option<&Crossings>,
 ) -> f64 {
     let dims = pg.dims();
     let w = targets.w;
@@ -451,7 +455,15 @@ pub(crate) fn remap_volume(
                 .collect();
             if goal.len() <= c {
                 let tg: Vec<f64> = (0..n_col).map(|j| targets.at(wall_node, j)).collect();
-                goal.push(blend_targets(&col_v, &dm, &tg));
+                let mut g = blend_targets(&col_v, &dm, &tg);
+                if let Some(cr) = crossings {
+                    let measure = |j: usize, r: [f64; 3]| match ortho {
+                        Some(o) => o.distance(c, j, r, nrm),
+                        None => (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt(),
+                    };
+                    cr.goal_distances(x, [a, b], &mut g, &measure);
+                }
+                goal.push(g);
             }
             err = err.max(remap_column(&mut col_v, &dm, &goal[c]));
             for (&p, y) in idx.iter().zip(&col_v) {

@@ -28,6 +28,7 @@
 //! off-wall node over its target, at the wall nodes off the rim.
 
 use crate::algebraic::bilinear3d::ParamGrid3;
+use crate::elliptic::crossing::Crossings;
 use crate::grid::faces::{block_node, face_dims, normal, step_in, tangents};
 use crate::Grid3;
 
@@ -134,6 +135,9 @@ pub struct TangentGoals {
     /// [`MIN_GAP`] of the uncorrected one), not to [`CLAMP`] of the gaps: for interior faces,
     /// whose lines may have to turn by the whole angle of a neighbouring volume's lines.
     free: bool,
+    /// Nodes held mostly by a crossing face's goal ([`Crossings`]): their error counts in the
+    /// passes' stop as the first nodes' does.
+    cross: Vec<bool>,
     /// Nodes whose weight ψ is at most this are left alone (0: every node of the columns
     /// moves towards its goal, the uncorrected offset where ψ is small). With several faces
     /// corrected in one block, each moves only the nodes of its own layer
@@ -182,15 +186,23 @@ fn tangential(r: V, n: V) -> V {
 
 impl TangentGoals {
     /// Offsets t⁰ and weights ψ from grid `x` and its parameters `pg` (module docs); with
-    /// `free` (interior faces) the shifts are bounded by monotonicity only.
-    pub fn new(pg: &ParamGrid3, x: &Grid3, w: usize, free: bool) -> Self {
+    /// `free` (interior faces) the shifts are bounded by monotonicity only. With `crossings`
+    /// (a wall's side faces to be crossed at right angles) the offsets of the columns next to
+    /// them are blended towards the crossing goals ([`Crossings::goal`]).
+    pub fn new(
+        pg: &ParamGrid3,
+        x: &Grid3,
+        w: usize,
+        free: bool,
+        crossings: Option<&Crossings>,
+    ) -> Self {
         let dims = x.dims();
         let (d, lo) = normal(w);
         let pt = |a: usize, b: usize| {
             let n = block_node(w, a, b, dims);
             x.point(n[0], n[1], n[2])
         };
-        let (mut t0, mut weight) = (Vec::new(), Vec::new());
+        let (mut t0, mut weight, mut cross) = (Vec::new(), Vec::new(), Vec::new());
         for_nodes(x, w, |_, [a, b], j, n, r, nrm| {
             let width = 0.5
                 * norm(sub(pt(a + 1, b), pt(a - 1, b))).min(norm(sub(pt(a, b + 1), pt(a, b - 1))));
@@ -204,10 +216,21 @@ impl TangentGoals {
                 1.0 / (1.0 + (norm(r) / (LAYER * width)).powi(2))
             };
             let psi = fade_weight(v.clamp(0.0, 1.0)) * fade;
-            let (psi, t) = match nrm {
+            let (psi, mut t) = match nrm {
                 Some(nv) if psi.is_finite() => (psi, tangential(r, nv)),
                 _ => (0.0, [0.0; 3]),
             };
+            // The first line stays the wall's (normal): the crossing goals start at j = 2.
+            let mut crossed = false;
+            if let (Some(nv), Some((phi, g))) = (
+                nrm,
+                crossings.filter(|_| j > 1).and_then(|c| c.goal(x, a, b, j)),
+            ) {
+                let tc = tangential(sub(g, pt(a, b)), nv);
+                t = std::array::from_fn(|e| (1.0 - phi) * t[e] + phi * tc[e]);
+                crossed = phi >= 0.5;
+            }
+            cross.push(crossed);
             t0.push(t);
             weight.push(psi);
         });
@@ -217,6 +240,7 @@ impl TangentGoals {
             per_col: dims[d] - 2,
             start: pg.clone(),
             free,
+            cross,
             cutoff: 0.0,
         }
     }
@@ -239,7 +263,7 @@ impl TangentGoals {
 /// `old`, its v already remapped) so that the nodes of the interior wall columns of face `w`
 /// in grid `x` (solved with `old`) move towards their goals. Returns the largest
 /// |t − t*| / |x_j − x₀| before the pass over the first off-wall nodes (j = 1: the sine of the
-/// angle at the wall still to remove).
+/// angle at the wall still to remove) and the nodes held by a crossing face.
 pub fn shift_tangential(
     old: &ParamGrid3,
     trial: &mut ParamGrid3,
@@ -263,7 +287,7 @@ pub fn shift_tangential(
             return;
         }
         let len = norm(r);
-        if len > 0.0 && j == 1 {
+        if len > 0.0 && (j == 1 || goals.cross[slot]) {
             err = err.max(norm(sub(goal, tangential(r, nv))) / len);
         }
         let p = flat(n, dims);

@@ -249,19 +249,20 @@ fn grid_face(
 }
 
 /// The smoothness of the grid across interior face `f.face`: every node of the face off its
-/// boundary, with its neighbours one step into either volume.
+/// boundary, with its neighbours one and two steps into either volume.
 fn across(topo: &Topology3, f: &FaceInterface, grids: &[&Grid3]) -> InterfaceSmoothness {
     let [np, nq] = topo.face_dims(f.face);
     let side = |s: VolumeSide, p: usize, q: usize| {
         let n = topo.volume_node(s.volume, s.side, p, q);
         let (d, lo) = normal(s.side);
-        (n, step_in(n, d, lo))
+        let i = step_in(n, d, lo);
+        (n, i, step_in(i, d, lo))
     };
     let nodes = (1..nq.saturating_sub(1)).flat_map(move |q| {
         (1..np.saturating_sub(1)).map(move |p| {
-            let (na, ia) = side(f.a, p, q);
-            let (_, ib) = side(f.b, p, q);
-            [na, ia, ib]
+            let (na, ia, ia2) = side(f.a, p, q);
+            let (nb, ib, ib2) = side(f.b, p, q);
+            [na, ia, ia2, nb, ib, ib2]
         })
     });
     face_smoothness(grids[f.a.volume], grids[f.b.volume], nodes)

@@ -223,6 +223,34 @@ pub(crate) fn corrections(
         }
         None => {}
     }
+    // Orthogonal side faces of the wall are held by the wall's passes (`elliptic::crossing`),
+    // which need the wall's tangential shifts and the side faces' profiles.
+    if let Some(w) = wall {
+        let side = crate::elliptic::crossing::Crossings::side_faces(w)
+            .into_iter()
+            .find(|&f| orthogonal[f]);
+        if let Some(f) = side {
+            let name = crate::grid::faces::FACE_NAMES[f];
+            if !orthogonal[w] {
+                return Err(Error::input(
+                    place,
+                    format!(
+                        "orthogonal = [\"{name}\"]: a side face of the wall is crossed at right \
+                         angles by the wall's passes, which need wall_orthogonal = true"
+                    ),
+                ));
+            }
+            if profiles != WallProfiles::Faces {
+                return Err(Error::input(
+                    place,
+                    format!(
+                        "orthogonal = [\"{name}\"]: a side face of the wall needs wall_profiles = \
+                         \"faces\" (the columns next to it follow its profile)"
+                    ),
+                ));
+            }
+        }
+    }
     let mut symmetry = [false; 6];
     for name in &v.symmetry {
         let f = parse_face(name).ok_or_else(|| {

@@ -5,20 +5,20 @@ use crate::grid::boundary::collapsed_edges;
 use crate::{Edge, Grid2};
 
 /// A point or vector in R³ (planar grids use z = 0).
-pub(super) type V3 = [f64; 3];
+pub(crate) type V3 = [f64; 3];
 
 #[inline]
-pub(super) fn sub(a: V3, b: V3) -> V3 {
+pub(crate) fn sub(a: V3, b: V3) -> V3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 #[inline]
-pub(super) fn dot(a: V3, b: V3) -> f64 {
+pub(crate) fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[inline]
-pub(super) fn cross(a: V3, b: V3) -> V3 {
+pub(crate) fn cross(a: V3, b: V3) -> V3 {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -27,7 +27,7 @@ pub(super) fn cross(a: V3, b: V3) -> V3 {
 }
 
 #[inline]
-pub(super) fn norm(a: V3) -> f64 {
+pub(crate) fn norm(a: V3) -> f64 {
     dot(a, a).sqrt()
 }
 

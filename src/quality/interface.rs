@@ -19,6 +19,14 @@ pub struct InterfaceSmoothness {
     /// Largest and mean ratio of the larger to the smaller first spacing (≥ 1).
     pub spacing_ratio_max: f64,
     pub spacing_ratio_mean: f64,
+    /// Across a volume face: the largest and mean turn of the crossing lines at their first
+    /// node off the face (the larger of the two sides'), degrees. A correction that makes the
+    /// lines meet the face at right angles can move their turn there, where the kink does not
+    /// see it (`elliptic::crossing`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turn_next_max_deg: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turn_next_mean_deg: Option<f64>,
 }
 
 /// The smoothness across an interface: node k of `ra` in `ga` is node k of `rb` in `gb`.
@@ -36,15 +44,41 @@ pub fn interface_smoothness<const D: usize>(
 }
 
 /// The smoothness across an interior face of a volume topology: for every node of the face
-/// (its boundary nodes left out), its block node in `ga`, the node one step into `ga` and the
-/// node one step into `gb`.
+/// (its boundary nodes left out), its block node and the nodes one and two steps in, in `ga`
+/// and in `gb`.
 pub fn face_smoothness(
     ga: &Grid3,
     gb: &Grid3,
-    nodes: impl Iterator<Item = [[usize; 3]; 3]>,
+    nodes: impl Iterator<Item = [[usize; 3]; 6]> + Clone,
 ) -> InterfaceSmoothness {
     let at3 = |g: &Grid3, [i, j, k]: [usize; 3]| g.point(i, j, k);
-    smoothness(nodes.map(|[p, a, b]| (at3(ga, p), at3(ga, a), at3(gb, b))))
+    let mut s = smoothness(
+        nodes
+            .clone()
+            .map(|[p, a, _, _, b, _]| (at3(ga, p), at3(ga, a), at3(gb, b))),
+    );
+    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0usize);
+    for [p, a, a2, q, b, b2] in nodes {
+        let turn = |g: &Grid3, p: [usize; 3], a: [usize; 3], a2: [usize; 3]| {
+            let (p, a, a2) = (at3(g, p), at3(g, a), at3(g, a2));
+            turn_deg(&sub(&a, &p), &sub(&a2, &a))
+        };
+        let t = turn(ga, p, a, a2).max(turn(gb, q, b, b2));
+        max = max.max(t);
+        sum += t;
+        n += 1;
+    }
+    if n > 0 {
+        s.turn_next_max_deg = Some(max);
+        s.turn_next_mean_deg = Some(sum / n as f64);
+    }
+    s
+}
+
+/// The angle between two successive segments of a line (0 when it goes straight on), degrees.
+fn turn_deg<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
+    let cos = a.iter().zip(b).map(|(u, v)| u * v).sum::<f64>() / (norm(a) * norm(b));
+    cos.clamp(-1.0, 1.0).acos().to_degrees()
 }
 
 /// Kink and spacing ratio over (node, neighbour on side a, neighbour on side b) triples.

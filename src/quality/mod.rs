@@ -46,7 +46,7 @@ mod display;
 pub mod family;
 pub mod interface;
 pub(crate) use display::cell_list;
-mod geom;
+pub(crate) mod geom;
 mod json_f64;
 pub mod quality3d;
 mod stats;
