@@ -86,11 +86,6 @@ impl Crossings {
             .then_some(Crossings { wall: w, sides })
     }
 
-    /// The wall face.
-    pub fn wall(&self) -> usize {
-        self.wall
-    }
-
     /// True if block face `f` (0-based) is one of the crossing faces.
     pub fn crosses(&self, f: usize) -> bool {
         Self::side_faces(self.wall)
@@ -99,8 +94,9 @@ impl Crossings {
             .any(|(&s, on)| on && s == f)
     }
 
-    /// Weight φ of the wall column at (a, b) of a block of `dims` nodes (module docs), and for
-    /// each side its share: φ = min(1, Σ φ_s).
+    /// The weights φ_s of the four sides (0 for a side not crossed) for the wall column at
+    /// (a, b) of a block of `dims` nodes (module docs); [`Crossings::goal`] takes
+    /// φ = min(1, Σ φ_s).
     fn weights(&self, dims: [usize; 3], a: usize, b: usize) -> [f64; 4] {
         let [na, nb] = face_dims(self.wall, dims);
         let m = [a, na - 1 - a, b, nb - 1 - b].map(|m| m as f64 - 1.0);

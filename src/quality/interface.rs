@@ -90,9 +90,8 @@ fn smoothness<const D: usize>(
         let a = sub(&pa, &p);
         let b = sub(&pb, &p);
         let (la, lb) = (norm(&a), norm(&b));
-        // Straight through: a and b point in opposite directions.
-        let cos = -a.iter().zip(&b).map(|(u, v)| u * v).sum::<f64>() / (la * lb);
-        let kink = cos.clamp(-1.0, 1.0).acos().to_degrees();
+        // Straight through: a and b point in opposite directions, the line turns by 0.
+        let kink = turn_deg(&a.map(|c| -c), &b);
         let ratio = la.max(lb) / la.min(lb);
         s.nodes += 1;
         s.kink_max_deg = s.kink_max_deg.max(kink);
