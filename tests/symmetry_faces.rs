@@ -380,6 +380,20 @@ fn a_wall_side_face_is_crossed_at_right_angles() {
     let crossed = format!("{wall}\northogonal = [\"F5\"]");
     let (o, _, r) = run(d.path(), &pair(0.5, n, &crossed, "mirror = \"upper\""));
     assert!(o.status.success(), "{}", text(&o));
+    // The report says which correction pass the grid keeps: the last, none having folded.
+    let p = &r["volumes"][0]["picard"]["passes"];
+    assert!(
+        p["run"].as_u64().unwrap() >= 1 && p["kept"] == p["run"],
+        "{p}"
+    );
+    assert!(p.get("fell_back").is_none(), "{p}");
+    let o = ellipgrid(d.path(), &["run", "pair.toml", "-o", "pair.x"]);
+    let out = text(&o);
+    assert!(
+        o.status.success() && out.contains("correction passes: "),
+        "{out}"
+    );
+    assert!(!out.contains("warning"), "{out}");
     let (kp, kc) = (kink_mean(&plain), kink_mean(&r));
     let turn = |r: &serde_json::Value| {
         r["face_interfaces"][0]["turn_next_mean_deg"]

@@ -445,17 +445,31 @@ fn even_dimensions_fall_back_to_plain_picard() {
     assert!(max_difference(&nested.grid, &r.grid) < 1e-12);
 }
 
-/// Bi-CGSTAB/ILU(0) that refuses operators of fewer than `min` unknowns: a failing coarse
-/// level.
-struct FailsWhenSmall {
+/// Bi-CGSTAB/ILU(0) that refuses operators of fewer than `min` unknowns (a failing coarse
+/// level) and its setups numbered `fail`, counted from 0 (a correction pass whose solve fails).
+struct Refusing {
     inner: BiCgStabIlu,
     min: usize,
+    count: usize,
+    fail: std::ops::Range<usize>,
 }
 
-impl ellipgrid::solve::LinearSolver<ellipgrid::solve::stencil19::Stencil19> for FailsWhenSmall {
+impl Refusing {
+    fn new(min: usize, fail: std::ops::Range<usize>) -> Self {
+        Refusing {
+            inner: BiCgStabIlu::new(),
+            min,
+            count: 0,
+            fail,
+        }
+    }
+}
+
+impl ellipgrid::solve::LinearSolver<ellipgrid::solve::stencil19::Stencil19> for Refusing {
     fn setup(&mut self, a: &ellipgrid::solve::stencil19::Stencil19) -> Result<(), SolveError> {
-        if a.len() < self.min {
-            return Err(SolveError::Singular("too small".into()));
+        self.count += 1;
+        if a.len() < self.min || self.fail.contains(&(self.count - 1)) {
+            return Err(SolveError::Singular("refused".into()));
         }
         self.inner.setup(a)
     }
@@ -470,7 +484,7 @@ impl ellipgrid::solve::LinearSolver<ellipgrid::solve::stencil19::Stencil19> for 
     }
 
     fn name(&self) -> &'static str {
-        "fails-when-small"
+        "refusing"
     }
 }
 
@@ -479,10 +493,7 @@ fn a_failing_coarse_level_is_skipped() {
     let faces = warped_box([33, 33, 33]);
     let (plain, _) = nested_solve(&faces, false, 0.1);
     // 9³ fails (343 unknowns), 17³ starts from the transfinite grid, 33³ from 17³.
-    let mut solver = FailsWhenSmall {
-        inner: BiCgStabIlu::new(),
-        min: 1000,
-    };
+    let mut solver = Refusing::new(1000, 0..0);
     let params = PicardParams {
         tolerance: 1e-12,
         nested: Some(true),
@@ -643,4 +654,82 @@ fn large_box_memory_paths_reproduce_an_exact_discrete_solution() {
     assert!(r.picard.converged, "{:?}", r.picard);
     let diff = max_difference(&r.grid, &exact);
     assert!(diff < 1e-9, "{diff:.2e}");
+}
+
+/// The correction passes say what the grid kept (`PicardInfo::passes`). Orthogonality at F5
+/// of the warped box: the passes run and the grid keeps the last one. When the first pass's
+/// solve fails (its setup and the three halved retries refused), the grid goes back to the
+/// uncorrected one, pass 0, and the report says so and why, instead of passing the grid off
+/// as corrected (the quality lines then show F5 as it was).
+#[test]
+fn a_failed_correction_pass_is_reported_not_hidden() {
+    use ellipgrid::elliptic::orthogonal3d::{grid_volume_corrected, FaceCorrections};
+    use ellipgrid::elliptic::wall::LOOSE_TOLERANCE;
+    let faces = warped_box([17, 17, 17]);
+    // at the loose tolerance the passes' solves are those of pass 0
+    let params = PicardParams {
+        tolerance: LOOSE_TOLERANCE,
+        ..PicardParams::default()
+    };
+    let mut orthogonal = [false; 6];
+    orthogonal[4] = true;
+    let c = FaceCorrections {
+        orthogonal,
+        ..FaceCorrections::default()
+    };
+    let f5 = |g: &Grid3| ellipgrid::quality::quality3d::face_quality(g, 4).orthogonality_max_deg;
+    // pass 0 alone: the nested solve, counting its setups
+    let mut counting = Refusing::new(0, 0..0);
+    let (plain, _) = ellipgrid::elliptic::nested3d::grid_volume_nested(
+        &faces,
+        ControlKind::Algebraic,
+        &mut counting,
+        &params,
+        "box",
+        &mut |_, _| {},
+    )
+    .unwrap();
+    let k = counting.count;
+    let corrected = grid_volume_corrected(
+        &faces,
+        &c,
+        None,
+        &mut BiCgStabIlu::new(),
+        &params,
+        "box",
+        &mut |_, _| {},
+    )
+    .unwrap();
+    let p = corrected.picard.passes.clone().expect("passes reported");
+    assert!(
+        p.run >= 1 && p.kept == p.run && p.fell_back.is_none(),
+        "{p:?}"
+    );
+    assert!(f5(&corrected.grid) < 0.5 * f5(&plain.grid));
+    let mut failing = Refusing::new(0, k..k + 4);
+    let back = grid_volume_corrected(
+        &faces,
+        &c,
+        None,
+        &mut failing,
+        &params,
+        "box",
+        &mut |_, _| {},
+    )
+    .unwrap();
+    let p = back.picard.passes.clone().expect("passes reported");
+    assert_eq!((p.run, p.kept), (1, 0), "{p:?}");
+    let why = p.fell_back.expect("the fallback is reported");
+    assert!(
+        why.contains("pass 1's solve failed") && why.contains("refused"),
+        "{why}"
+    );
+    assert!(max_difference(&plain.grid, &back.grid) < 1e-5);
+    eprintln!(
+        "F5 max angle: uncorrected {:.2}°, corrected {:.2}° ({} passes), after the failed pass {:.2}°",
+        f5(&plain.grid),
+        f5(&corrected.grid),
+        corrected.picard.passes.as_ref().unwrap().run,
+        f5(&back.grid)
+    );
 }

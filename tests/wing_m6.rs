@@ -87,6 +87,9 @@ fn four_block_c_o_grid_is_fold_free_and_holds_the_wall_spacing() {
         assert!(lo >= 0.99 && hi <= 1.01, "{}: {w}", v["name"]);
         assert!(w["angle_mean_deg"].as_f64().unwrap() < 0.05, "{w}");
         assert!(w["angle_max_deg"].as_f64().unwrap() < 1.0, "{w}");
+        // the wall's passes (and the crossings they hold) kept their last pass
+        let p = &v["picard"]["passes"];
+        assert!(p["kept"] == p["run"] && p.get("fell_back").is_none(), "{p}");
     }
     // Mean kink (degrees) of the grid lines crossing each interior face: the measured value
     // with about 10 % margin. The wake sheet is a symmetry face of the upper wake volume,

@@ -201,6 +201,19 @@ pub fn volume(v: &ellipgrid::job::volume::VolumeReport) {
             v.name, v.picard.steps, v.picard.tolerance
         );
     }
+    if let (Some(p), None) = (&v.picard.passes, &v.mirror_of) {
+        println!(
+            "  correction passes: {} run, the grid keeps pass {}",
+            p.run, p.kept
+        );
+        if let Some(why) = &p.fell_back {
+            eprintln!(
+                "warning: volume '{}': {why}; the grid is pass {}'s, the best fold-free one: \
+                 its wall and orthogonal faces are as the quality lines above say, not as asked",
+                v.name, p.kept
+            );
+        }
+    }
 }
 
 /// The name of the nonlinear iteration a report ran, with its Anderson depth.

@@ -14,7 +14,8 @@
 //! [`MAX_PASSES`]. A pass whose solve fails (a remap from a folded or strongly oblique grid
 //! can make the operator singular) is retried with its parameter update halved, up to three
 //! times. A pass that folds the grid is not kept: the result is then the fold-free
-//! pass with the smallest largest angle at the chosen faces.
+//! pass with the smallest largest angle at the chosen faces, and the history says so
+//! ([`Passes`]: passes run, the one kept, why).
 
 use crate::algebraic::bilinear3d::{bilinear, ParamGrid3};
 use crate::algebraic::control3d::Control3;
@@ -22,7 +23,7 @@ use crate::algebraic::flat_edge::edge_functions;
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
 use crate::elliptic::crossing::Crossings;
-use crate::elliptic::picard::{append, PicardInfo, PicardParams, PicardStep, VolumeResult};
+use crate::elliptic::picard::{append, Passes, PicardInfo, PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::symmetry3d::{Symmetry, SymmetryFace};
 use crate::elliptic::wall::{
     remap_volume, WallProfiles, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES,
@@ -252,9 +253,12 @@ pub fn grid_volume_corrected_to(
     }
     let mut goal = Vec::new();
     let mut tangent_goals: Vec<(usize, TangentGoals)> = Vec::new();
-    // The fold-free grid with the smallest largest angle at the orthogonal faces, and its
-    // parameters (the fallback if a later pass folds the grid).
-    let mut best: Option<(f64, ParamGrid3, Grid3)> = None;
+    // The fold-free grid with the smallest largest angle at the orthogonal faces, the pass
+    // it came from and its parameters (the fallback if a later pass folds the grid).
+    let mut best: Option<(f64, usize, ParamGrid3, Grid3)> = None;
+    // passes solved so far, and why the grid went back to `best` (if it did)
+    let mut run = 0;
+    let mut fell_back: Option<(usize, String)> = None;
     let score = |x: &Grid3| {
         use crate::quality::quality3d::{face_quality, folded_cells3d};
         let worst = ortho
@@ -265,7 +269,7 @@ pub fn grid_volume_corrected_to(
     };
     if !ortho.is_empty() {
         if let (0, s) = score(&x) {
-            best = Some((s, pg.clone(), x.clone()));
+            best = Some((s, 0, pg.clone(), x.clone()));
         }
     }
     for pass in 1..=MAX_PASSES {
@@ -300,13 +304,18 @@ pub fn grid_volume_corrected_to(
         let prev = pg.clone();
         if !done {
             pg = trial;
+            run += 1;
         }
         if done || last {
             // A final solve to the asked tolerance from the current grid.
             let step = solves.run(&mut x, &pg, solver, params, progress);
-            let fine = step.is_ok() && (ortho.is_empty() || score(&x).0 == 0);
-            let (bpg, bx) = match (step, best.take()) {
-                (Ok(step), _) if fine => {
+            let folded = if step.is_ok() && !ortho.is_empty() {
+                score(&x).0
+            } else {
+                0
+            };
+            let (why, bpass, bpg, bx) = match (step, best.take()) {
+                (Ok(step), _) if folded == 0 => {
                     append(&mut info, step);
                     break;
                 }
@@ -315,9 +324,18 @@ pub fn grid_volume_corrected_to(
                     break;
                 }
                 (Err(e), None) => return Err(e),
-                (_, Some((_, bpg, bx))) => (bpg, bx),
+                (Ok(_), Some((_, bp, bpg, bx))) => {
+                    (format!("pass {run} folded {folded} cells"), bp, bpg, bx)
+                }
+                (Err(e), Some((_, bp, bpg, bx))) => (
+                    format!("pass {run}'s solve failed ({})", cause(&e)),
+                    bp,
+                    bpg,
+                    bx,
+                ),
             };
             // The orthogonal passes folded the grid: back to the best fold-free one.
+            fell_back = Some((bpass, why));
             (pg, x) = (bpg, bx);
             append(
                 &mut info,
@@ -368,7 +386,8 @@ pub fn grid_volume_corrected_to(
             Ok(step) => append(&mut info, step),
             Err(e) => match best.take() {
                 // A failed orthogonal pass: finish from the best fold-free grid.
-                Some((_, bpg, bx)) => {
+                Some((_, bp, bpg, bx)) => {
+                    fell_back = Some((bp, format!("pass {run}'s solve failed ({})", cause(&e))));
                     (pg, x) = (bpg, bx);
                     let step = solves.run(&mut x, &pg, solver, params, progress)?;
                     append(&mut info, step);
@@ -380,17 +399,28 @@ pub fn grid_volume_corrected_to(
         if !ortho.is_empty() {
             let (folded, s) = score(&x);
             if folded == 0 && best.as_ref().is_none_or(|b| s < b.0) {
-                best = Some((s, pg.clone(), x.clone()));
+                best = Some((s, run, pg.clone(), x.clone()));
             }
         }
     }
     let ctrl = controls(&pg);
-    Ok((
-        VolumeResult {
-            grid: x,
-            picard: info.expect("at least one solve"),
-        },
-        ctrl,
-        pg,
-    ))
+    let mut picard = info.expect("at least one solve");
+    let (kept, fell_back) = match fell_back {
+        Some((kept, why)) => (kept, Some(why)),
+        None => (run, None),
+    };
+    picard.passes = (c.wall.is_some() || !ortho.is_empty()).then_some(Passes {
+        run,
+        kept,
+        fell_back,
+    });
+    Ok((VolumeResult { grid: x, picard }, ctrl, pg))
+}
+
+/// What made a pass's solve fail, without the block's name (the report is the block's).
+fn cause(e: &Error) -> String {
+    match e {
+        Error::Solve { source, .. } => source.to_string(),
+        e => e.to_string(),
+    }
 }
