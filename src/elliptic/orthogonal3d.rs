@@ -29,7 +29,7 @@ use crate::elliptic::wall::{
     remap_volume, WallProfiles, WallTargets, ANGLE_TOLERANCE, LOOSE_TOLERANCE, MAX_PASSES,
     TOLERANCE,
 };
-use crate::elliptic::wall_normal::{shift_tangential, TangentGoals, LAYER_CUTOFF};
+use crate::elliptic::wall_normal::{shift_tangential, TangentGoals, LAYER_CUTOFF, SIDE_HOLD};
 use crate::elliptic::{nested3d, poisson3d};
 use crate::grid::faces::{Faces, FACE_NAMES};
 use crate::solve::stencil19::Stencil19;
@@ -50,6 +50,10 @@ pub struct FaceCorrections {
     /// Faces that are symmetry planes ([`crate::elliptic::symmetry3d`]): every solve lets
     /// their nodes slide in their planes.
     pub symmetry: [bool; 6],
+    /// Faces shared with another volume of a topology: an orthogonal face that is not the
+    /// wall keeps their profile in the columns next to them, as next to symmetry faces
+    /// ([`crate::elliptic::wall_normal::SIDE_HOLD`], [`crate::elliptic::wall_normal::SIDE_FADE`]).
+    pub shared: [bool; 6],
 }
 
 impl FaceCorrections {
@@ -281,7 +285,18 @@ pub fn grid_volume_corrected_to(
                 .map(|&f| {
                     let wall = Some(f) == c.wall;
                     let cr = crossings.as_ref().filter(|_| wall);
-                    let mut g = TangentGoals::new(&pg, &x, f, !wall, cr);
+                    // a free face fades next to side faces shared with another volume
+                    // and next to symmetry faces (`wall_normal::SIDE_FADE`)
+                    let held = Crossings::side_faces(f).map(|s| {
+                        if c.symmetry[s] {
+                            1
+                        } else if c.shared[s] {
+                            SIDE_HOLD
+                        } else {
+                            0
+                        }
+                    });
+                    let mut g = TangentGoals::new(&pg, &x, f, !wall, held, cr);
                     if ortho.len() > 1 {
                         g.cutoff = LAYER_CUTOFF;
                     }

@@ -145,6 +145,28 @@ pub struct TangentGoals {
     pub cutoff: f64,
 }
 
+/// At a free (interior) face, the goals' weight is multiplied by the smoothstep of
+/// (m − h)/SIDE_FADE next to a held side face, m the column's distance in columns from it (1
+/// next to it), h the columns that keep their profile there ([`SIDE_HOLD`] next to a fixed face
+/// shared with another volume, 1 next to a symmetry face): the spacing and the lines across
+/// that face stay those the volume beyond it sees, and the lines turn to the face's normal over
+/// the columns in between. Measured on the M6's wake volume at 33 × 33 × 25 (`orthogonal =
+/// ["F6"]`, `waketip`, its sides `te_up` shared and fixed, the wake sheet a symmetry face),
+/// mean kink across `waketip` / turn at the first node off it / growth ratio along i: 66.6° /
+/// 8.6° / 1.40 uncorrected; without the fade the passes fold from the second on (back to pass
+/// 0); one column held at both, fading over 4: 19.5° / 15.3° / 4.58; over 6: 24.4° / 14.7° /
+/// 2.56 (but one face in the wing plane at the tip with checkMesh skewness 4.28; 3.62 at full
+/// size); two columns held at both: 28.9° / 14.3° / 2.23 (full size: a face of 4.09); shipped
+/// (2 at `te_up`, 1 at the sheet): 26.3° / 14.4° / 2.23, every face below 4 at both sizes.
+/// Fading next to every side (the box's boundary faces too) gives 17.3° over 2 columns but
+/// growth 10.9, and over 4 columns it undoes the sheared box's correction at 9 nodes
+/// (`tests/volume_topology.rs`: 29.5° against 11.2°).
+pub const SIDE_FADE: f64 = 6.0;
+
+/// Columns next to a fixed side face shared with another volume that keep their profile
+/// ([`SIDE_FADE`]).
+pub const SIDE_HOLD: usize = 2;
+
 /// [`TangentGoals::cutoff`] when several faces of a block are corrected.
 pub const LAYER_CUTOFF: f64 = 0.01;
 
@@ -186,17 +208,21 @@ fn tangential(r: V, n: V) -> V {
 
 impl TangentGoals {
     /// Offsets t⁰ and weights ψ from grid `x` and its parameters `pg` (module docs); with
-    /// `free` (interior faces) the shifts are bounded by monotonicity only. With `crossings`
-    /// (a wall's side faces to be crossed at right angles) the offsets of the columns next to
-    /// them are blended towards the crossing goals ([`Crossings::goal`]).
+    /// `free` (interior faces) the shifts are bounded by monotonicity only, and the weights
+    /// fade next to the side faces at a = 0, a = na − 1, b = 0, b = nb − 1 where `held` gives
+    /// the columns that keep their profile there (0: not held; [`SIDE_FADE`]). With `crossings` (a wall's side faces to be crossed at right angles) the
+    /// offsets of the columns next to them are blended towards the crossing goals
+    /// ([`Crossings::goal`]).
     pub fn new(
         pg: &ParamGrid3,
         x: &Grid3,
         w: usize,
         free: bool,
+        held: [usize; 4],
         crossings: Option<&Crossings>,
     ) -> Self {
         let dims = x.dims();
+        let [na, nb] = face_dims(w, dims);
         let (d, lo) = normal(w);
         let pt = |a: usize, b: usize| {
             let n = block_node(w, a, b, dims);
@@ -215,7 +241,15 @@ impl TangentGoals {
             } else {
                 1.0 / (1.0 + (norm(r) / (LAYER * width)).powi(2))
             };
-            let psi = fade_weight(v.clamp(0.0, 1.0)) * fade;
+            let mut psi = fade_weight(v.clamp(0.0, 1.0)) * fade;
+            if free {
+                for (m, h) in [a, na - 1 - a, b, nb - 1 - b].into_iter().zip(held) {
+                    if h > 0 {
+                        let t = ((m as f64 - h as f64) / SIDE_FADE).clamp(0.0, 1.0);
+                        psi *= t * t * (3.0 - 2.0 * t);
+                    }
+                }
+            }
             let (psi, mut t) = match nrm {
                 Some(nv) if psi.is_finite() => (psi, tangential(r, nv)),
                 _ => (0.0, [0.0; 3]),
@@ -466,6 +500,52 @@ mod tests {
             [i as f64 / h[0] + lean * y, y, 0.8 * k as f64 / h[2]]
         });
         Faces::from_grid(&g)
+    }
+
+    /// A free face's goals fade next to a held side face: zero in the [`SIDE_HOLD`] columns
+    /// next to it, rising by the smoothstep over [`SIDE_FADE`] columns, untouched beyond and
+    /// next to the sides that are not held.
+    #[test]
+    fn free_goals_fade_next_to_held_side_faces() {
+        use crate::algebraic::bilinear3d::bilinear;
+        use crate::algebraic::flat_edge::edge_functions;
+        use crate::algebraic::transfinite3d::transfinite;
+        let faces = sheared_box(0.4);
+        let x = transfinite(&faces);
+        let pg = bilinear(&edge_functions(&faces), "box").unwrap();
+        let f5 = parse_face("F5").unwrap();
+        let plain = TangentGoals::new(&pg, &x, f5, true, [0; 4], None);
+        let held = TangentGoals::new(&pg, &x, f5, true, [SIDE_HOLD, 0, 0, 0], None);
+        let [na, nb] = face_dims(f5, x.dims());
+        let per = plain.per_col;
+        let mut seen = 0;
+        for b in 1..nb - 1 {
+            for a in 1..na - 1 {
+                for j in 0..per {
+                    let slot = ((b - 1) * (na - 2) + a - 1) * per + j;
+                    let (p, h) = (plain.weight[slot], held.weight[slot]);
+                    let t = ((a as f64 - SIDE_HOLD as f64) / SIDE_FADE).clamp(0.0, 1.0);
+                    let want = p * t * t * (3.0 - 2.0 * t);
+                    assert!(
+                        (h - want).abs() <= 1e-15,
+                        "a {a} b {b} j {j}: {h} vs {want}"
+                    );
+                    if a <= SIDE_HOLD {
+                        assert_eq!(h, 0.0);
+                    } else if a as f64 >= SIDE_HOLD as f64 + SIDE_FADE {
+                        assert_eq!(h, p);
+                    } else if p > 0.0 {
+                        assert!(h > 0.0 && h < p);
+                        seen += 1;
+                    }
+                }
+            }
+        }
+        assert!(seen > 0);
+        // the wall's goals (not free) do not fade
+        let wall = TangentGoals::new(&pg, &x, f5, false, [SIDE_HOLD; 4], None);
+        let wall_plain = TangentGoals::new(&pg, &x, f5, false, [0; 4], None);
+        assert_eq!(wall.weight, wall_plain.weight);
     }
 
     #[test]

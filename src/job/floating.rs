@@ -212,7 +212,7 @@ fn walled_strip(
         let vplace = topo.volume_place(&file, v);
         let spec = &case.case.volumes[v];
         let vw = wall_face(spec, &vplace)?;
-        let c = corrections(spec, vw, &vplace)?;
+        let c = corrections(&case.case.volumes, spec, vw, &vplace)?;
         let vw = vw.expect("both volumes have a wall (Strip::wall_face)");
         orthogonal |= c.orthogonal[vw];
         let faces = Faces::new(topo.volume_faces(v, grids), &vplace)?;

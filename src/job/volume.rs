@@ -115,7 +115,7 @@ pub(crate) fn solve_volume_from(
         }
     };
     let wall = wall_face(v, place)?;
-    let c = corrections(v, wall, place)?;
+    let c = corrections(&spec.volumes, v, wall, place)?;
     if c.wall.is_some() {
         check_kind(spec.solver.control, place)?;
     }
@@ -173,9 +173,11 @@ pub(crate) fn solve_volume_from(
     Ok((name, Block::Volume(r.grid), rep, ctrl, param))
 }
 
-/// The corrections a `[[volume]]` table asks for: the wall (`wall`, with `wall_orthogonal`,
-/// default true) and the `orthogonal` faces.
+/// The corrections a `[[volume]]` table `v` (one of the case's `volumes`) asks for: the wall
+/// (`wall`, with `wall_orthogonal`, default true) and the `orthogonal` faces; with the faces
+/// it shares with another volume of the topology.
 pub(crate) fn corrections(
+    volumes: &[VolumeSpec],
     v: &VolumeSpec,
     wall: Option<usize>,
     place: &str,
@@ -283,6 +285,22 @@ pub(crate) fn corrections(
         orthogonal,
         profiles,
         symmetry,
+        shared: shared_faces(volumes, v),
+    })
+}
+
+/// The faces of volume `v` that another of the `volumes` (or `v` itself, on another side)
+/// names too.
+fn shared_faces(volumes: &[VolumeSpec], v: &VolumeSpec) -> [bool; 6] {
+    v.face_names().map(|name| {
+        name.as_ref().is_some_and(|n| {
+            volumes
+                .iter()
+                .flat_map(|u| u.face_names())
+                .filter(|m| m.as_deref() == Some(n.as_str()))
+                .count()
+                > 1
+        })
     })
 }
 

@@ -350,7 +350,7 @@ fn start_volume(case: &LoadedCase, k: usize, faces: &Faces, seed: u64) -> Result
     let bad = quality3d(&start).folded_cells;
     let mut solver =
         solve::select::for_block(&v.linear, faces.dims()).map_err(|m| Error::input(&place, m))?;
-    let c = corrections(v, wall_face(v, &place)?, &place)?;
+    let c = corrections(&case.case.volumes, v, wall_face(v, &place)?, &place)?;
     let r = match c.any() {
         true => grid_volume_corrected(
             faces,
