@@ -75,8 +75,8 @@ const CROSSINGS: [(&str, &str); 1] = [("wing_up", "\"F2\", \"F6\"")];
 /// (`ellipgrid::elliptic::orthogonal3d`'s passes): `waketip` (F6) of the upper wake volume,
 /// whose mirror image the lower one is, so that a right angle there is a smooth crossing. The
 /// goals fade next to `te_up` (shared with the wing
-/// volume) and the wake sheet (a symmetry face). Mean kink across `waketip` 61.6° → 14.9° at
-/// full size, the lines turning 6.3° → 15.4° at their first node off it (docs/ONERA_M6.md).
+/// volume) and the wake sheet (a symmetry face). Mean kink across `waketip` 61.6° → 15.1° at
+/// full size, the lines turning 6.3° → 15.8° at their first node off it (docs/ONERA_M6.md).
 const ORTHOGONAL: [(&str, &str); 1] = [("wake_up", "\"F6\"")];
 
 #[path = "common/wing_co_shape.rs"]
