@@ -371,7 +371,8 @@ pub fn grid_volume_corrected_to(
                     bx,
                 ),
             };
-            // The orthogonal passes folded the grid: back to the best fold-free one.
+            // The last pass folded the grid or its solve failed: back to the best fold-free
+            // one.
             fell_back = Some((bpass, why));
             (pg, x) = (bpg, bx);
             append(
