@@ -576,6 +576,11 @@ pub struct VolumeSpec {
     /// in the whole domain's grid of which the block is the half.
     #[serde(default)]
     pub symmetry: Vec<String>,
+    /// In a volume topology: faces ("F1" … "F6") shared with another volume whose grid lines
+    /// leave the face in the direction that volume's lines arrive in; that volume is gridded
+    /// first ([`crate::elliptic::continuation`]).
+    #[serde(rename = "continue", default)]
+    pub continue_faces: Vec<String>,
     /// In a volume topology: this volume is the mirror image of the named one in the plane of
     /// the symmetry faces they share (`symmetry` of that volume): not solved, but mirrored
     /// ([`crate::job`]'s `mirror`), so that the grid lines cross those faces without a kink.

@@ -18,7 +18,9 @@
 //! | wall spacing and wall-normal lines of volume blocks | — | [`mod@wall`], [`wall_normal`] |
 //! | wall spacing along edges of 2D blocks | — | [`wall2d`] |
 //! | floating interior faces of a volume topology (the strip across a face) | [86]–[88] | [`floating3d`] |
+//! | grid lines continued across an interior face from the volume beyond it | — | [`continuation`] |
 pub mod anderson;
+pub mod continuation;
 pub mod crossing;
 pub mod domain;
 pub mod floating3d;

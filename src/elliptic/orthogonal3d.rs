@@ -8,7 +8,8 @@
 //! and at every orthogonal face (the wall with `wall_orthogonal`, and interior faces of a
 //! volume topology, so that grid lines cross them without a kink when both volumes are made
 //! orthogonal there) the tangential parameters of the nodes near the face are shifted so that
-//! the grid lines leave it along its normal ([`super::wall_normal`]). Each pass re-solves from
+//! the grid lines leave it along its normal ([`super::wall_normal`]), or at a continued face
+//! along the lines of the volume beyond it ([`super::continuation`]). Each pass re-solves from
 //! the current grid; passes stop when the heights are within [`TOLERANCE`] and the first lines
 //! within [`ANGLE_TOLERANCE`] of the normal at every chosen face, after at most
 //! [`MAX_PASSES`] (a volume without a wall: once a pass changes the mean angle at its
@@ -23,6 +24,7 @@ use crate::algebraic::control3d::Control3;
 use crate::algebraic::flat_edge::edge_functions;
 use crate::algebraic::transfinite3d::transfinite;
 use crate::algebraic::ControlKind;
+use crate::elliptic::continuation::{Lines, CORNER_HOLD};
 use crate::elliptic::crossing::Crossings;
 use crate::elliptic::picard::{append, Passes, PicardInfo, PicardParams, PicardStep, VolumeResult};
 use crate::elliptic::symmetry3d::{Symmetry, SymmetryFace};
@@ -52,7 +54,7 @@ pub const SETTLED: f64 = 0.5;
 
 /// What a volume block's passes hold: the wall spacing at `wall`, orthogonality at the faces
 /// flagged in `orthogonal` (F1 … F6).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct FaceCorrections {
     pub wall: Option<usize>,
     pub orthogonal: [bool; 6],
@@ -65,12 +67,18 @@ pub struct FaceCorrections {
     /// wall keeps their profile in the columns next to them, as next to symmetry faces
     /// ([`crate::elliptic::wall_normal::SIDE_HOLD`], [`crate::elliptic::wall_normal::SIDE_FADE`]).
     pub shared: [bool; 6],
+    /// Faces whose grid lines continue those of the volume beyond them, gridded first: the
+    /// directions they arrive in ([`crate::elliptic::continuation`]).
+    pub continued: [Option<std::sync::Arc<Lines>>; 6],
 }
 
 impl FaceCorrections {
     /// True if there is anything to correct (or a symmetry face to slide).
     pub fn any(&self) -> bool {
-        self.wall.is_some() || self.orthogonal.contains(&true) || self.symmetry.contains(&true)
+        self.wall.is_some()
+            || self.orthogonal.contains(&true)
+            || self.symmetry.contains(&true)
+            || self.continued.iter().any(Option::is_some)
     }
 }
 
@@ -186,8 +194,21 @@ pub fn grid_volume_corrected_to(
         .filter(|&w| c.orthogonal[w])
         .and_then(|w| Crossings::new(w, &c.orthogonal));
     let ortho: Vec<usize> = (0..6)
-        .filter(|&f| c.orthogonal[f] && !crossings.is_some_and(|cr| cr.crosses(f)))
+        .filter(|&f| {
+            (c.orthogonal[f] && !crossings.is_some_and(|cr| cr.crosses(f)))
+                || c.continued[f].is_some()
+        })
         .collect();
+    // The angles the passes aim at: to the face's normal, or to the arriving lines at a
+    // continued face (largest, mean).
+    let face_angles = |x: &Grid3, f: usize| match &c.continued[f] {
+        Some(l) => l.angles(x, f),
+        None => {
+            let q = crate::quality::quality3d::face_quality(x, f);
+            (q.orthogonality_max_deg, q.orthogonality_mean_deg)
+        }
+    };
+    let continuing = c.continued.iter().any(Option::is_some);
     let AlgebraicMap {
         param: mut pg,
         controls,
@@ -275,10 +296,10 @@ pub fn grid_volume_corrected_to(
     let mut run = 0;
     let mut fell_back: Option<(usize, String)> = None;
     let score = |x: &Grid3| {
-        use crate::quality::quality3d::{face_quality, folded_cells3d};
+        use crate::quality::quality3d::folded_cells3d;
         let worst = ortho
             .iter()
-            .map(|&f| face_quality(x, f).orthogonality_max_deg)
+            .map(|&f| face_angles(x, f).0)
             .fold(0.0, f64::max);
         (folded_cells3d(x), worst)
     };
@@ -289,11 +310,7 @@ pub fn grid_volume_corrected_to(
     }
     // the mean angle at the orthogonal faces (the stop of a volume without a wall: SETTLED)
     let mean_angle = |x: &Grid3| {
-        use crate::quality::quality3d::face_quality;
-        let sum: f64 = ortho
-            .iter()
-            .map(|&f| face_quality(x, f).orthogonality_mean_deg)
-            .sum();
+        let sum: f64 = ortho.iter().map(|&f| face_angles(x, f).1).sum();
         sum / ortho.len().max(1) as f64
     };
     let mut prev_mean = mean_angle(&x);
@@ -312,13 +329,19 @@ pub fn grid_volume_corrected_to(
                     let held = Crossings::side_faces(f).map(|s| {
                         if c.symmetry[s] {
                             1
+                        } else if c.shared[s]
+                            && continuing
+                            && (c.orthogonal[s] || c.continued[s].is_some())
+                        {
+                            CORNER_HOLD
                         } else if c.shared[s] {
                             SIDE_HOLD
                         } else {
                             0
                         }
                     });
-                    let mut g = TangentGoals::new(&pg, &x, f, !wall, held, cr);
+                    let mut g =
+                        TangentGoals::new(&pg, &x, f, !wall, held, cr, c.continued[f].as_deref());
                     if ortho.len() > 1 {
                         g.cutoff = LAYER_CUTOFF;
                     }

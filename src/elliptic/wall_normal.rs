@@ -28,6 +28,7 @@
 //! off-wall node over its target, at the wall nodes off the rim.
 
 use crate::algebraic::bilinear3d::ParamGrid3;
+use crate::elliptic::continuation::Lines;
 use crate::elliptic::crossing::Crossings;
 use crate::grid::faces::{block_node, face_dims, normal, step_in, tangents};
 use crate::Grid3;
@@ -138,6 +139,9 @@ pub struct TangentGoals {
     /// Nodes held mostly by a crossing face's goal ([`Crossings`]): their error counts in the
     /// passes' stop as the first nodes' does.
     cross: Vec<bool>,
+    /// At a continued face ([`crate::elliptic::continuation`]): the goal offsets t_c the
+    /// goals blend to instead of zero, t* = (1 − ψ) t⁰ + ψ t_c.
+    tc: Option<Vec<V>>,
     /// Nodes whose weight ψ is at most this are left alone (0: every node of the columns
     /// moves towards its goal, the uncorrected offset where ψ is small). With several faces
     /// corrected in one block, each moves only the nodes of its own layer
@@ -212,7 +216,9 @@ impl TangentGoals {
     /// fade next to the side faces at a = 0, a = na − 1, b = 0, b = nb − 1 where `held` gives
     /// the columns that keep their profile there (0: not held; [`SIDE_FADE`]). With `crossings` (a wall's side faces to be crossed at right angles) the
     /// offsets of the columns next to them are blended towards the crossing goals
-    /// ([`Crossings::goal`]).
+    /// ([`Crossings::goal`]). With `lines` (a continued face) the goals are the offsets of the
+    /// arriving lines ([`Lines::offset`]), faded in along the face next to the held sides
+    /// ([`Lines::side_fade`]).
     pub fn new(
         pg: &ParamGrid3,
         x: &Grid3,
@@ -220,6 +226,7 @@ impl TangentGoals {
         free: bool,
         held: [usize; 4],
         crossings: Option<&Crossings>,
+        lines: Option<&Lines>,
     ) -> Self {
         let dims = x.dims();
         let [na, nb] = face_dims(w, dims);
@@ -229,6 +236,12 @@ impl TangentGoals {
             x.point(n[0], n[1], n[2])
         };
         let (mut t0, mut weight, mut cross) = (Vec::new(), Vec::new(), Vec::new());
+        let mut tc = lines.map(|_| Vec::new());
+        // distances along the face from its four sides, for the continuation's side fade
+        let sides = match lines {
+            Some(_) => Lines::side_distances(na, nb, pt),
+            None => Vec::new(),
+        };
         for_nodes(x, w, |_, [a, b], j, n, r, nrm| {
             let width = 0.5
                 * norm(sub(pt(a + 1, b), pt(a - 1, b))).min(norm(sub(pt(a, b + 1), pt(a, b - 1))));
@@ -250,6 +263,9 @@ impl TangentGoals {
                     }
                 }
             }
+            if lines.is_some() {
+                psi *= Lines::side_fade(sides[a + na * b], held, norm(r) / j as f64);
+            }
             let (psi, mut t) = match nrm {
                 Some(nv) if psi.is_finite() => (psi, tangential(r, nv)),
                 _ => (0.0, [0.0; 3]),
@@ -265,6 +281,10 @@ impl TangentGoals {
                 crossed = phi >= 0.5;
             }
             cross.push(crossed);
+            if let (Some(tc), Some(l)) = (tc.as_mut(), lines) {
+                let c = nrm.and_then(|nv| Lines::offset(l.at(a, b), nv, r));
+                tc.push(c.unwrap_or(t));
+            }
             t0.push(t);
             weight.push(psi);
         });
@@ -275,6 +295,7 @@ impl TangentGoals {
             start: pg.clone(),
             free,
             cross,
+            tc,
             cutoff: 0.0,
         }
     }
@@ -315,7 +336,10 @@ pub fn shift_tangential(
     let pt = |n: [usize; 3]| x.point(n[0], n[1], n[2]);
     for_nodes(x, w, |slot, _, j, n, r, nrm| {
         let (t0, psi) = (goals.t0[slot], goals.weight[slot]);
-        let goal = t0.map(|c| c * (1.0 - psi));
+        let goal: V = match &goals.tc {
+            Some(tc) => std::array::from_fn(|e| t0[e] * (1.0 - psi) + tc[slot][e] * psi),
+            None => t0.map(|c| c * (1.0 - psi)),
+        };
         let Some(nv) = nrm else { return };
         if psi <= goals.cutoff {
             return;
@@ -514,8 +538,8 @@ mod tests {
         let x = transfinite(&faces);
         let pg = bilinear(&edge_functions(&faces), "box").unwrap();
         let f5 = parse_face("F5").unwrap();
-        let plain = TangentGoals::new(&pg, &x, f5, true, [0; 4], None);
-        let held = TangentGoals::new(&pg, &x, f5, true, [SIDE_HOLD, 0, 0, 0], None);
+        let plain = TangentGoals::new(&pg, &x, f5, true, [0; 4], None, None);
+        let held = TangentGoals::new(&pg, &x, f5, true, [SIDE_HOLD, 0, 0, 0], None, None);
         let [na, nb] = face_dims(f5, x.dims());
         let per = plain.per_col;
         let mut seen = 0;
@@ -543,8 +567,8 @@ mod tests {
         }
         assert!(seen > 0);
         // the wall's goals (not free) do not fade
-        let wall = TangentGoals::new(&pg, &x, f5, false, [SIDE_HOLD; 4], None);
-        let wall_plain = TangentGoals::new(&pg, &x, f5, false, [0; 4], None);
+        let wall = TangentGoals::new(&pg, &x, f5, false, [SIDE_HOLD; 4], None, None);
+        let wall_plain = TangentGoals::new(&pg, &x, f5, false, [0; 4], None, None);
         assert_eq!(wall.weight, wall_plain.weight);
     }
 

@@ -275,7 +275,16 @@ fn solve_all(
             let t0 = Instant::now();
             let place = topo.volume_place(&file, v);
             let f = Faces::new(topo.volume_faces(v, grids), &place)?;
-            solve_volume_from(case, v, &f, start.take(), frozen.take(), &place, t0)
+            solve_volume_from(
+                case,
+                v,
+                &f,
+                start.take(),
+                frozen.take(),
+                Default::default(),
+                &place,
+                t0,
+            )
         })
         .collect()
 }

@@ -5,15 +5,16 @@
 //! bit-identical; the report gives the smoothness of the grid across every interior face.
 
 use super::floating::FloatingHistory;
-use super::volume::{solve_volume, VolumeReport};
+use super::volume::{continued_faces, solve_volume_continued, Continued, VolumeReport};
 use crate::algebraic::coons::coons_sides;
 use crate::algebraic::transfinite3d::transfinite;
 use crate::case::volume::volume_name;
 use crate::case::{FaceKind, LoadedCase};
+use crate::elliptic::continuation::Lines;
 use crate::elliptic::orthogonal::grid_block_with;
 use crate::elliptic::picard::PicardInfo;
 use crate::grid::boundary::Boundary2;
-use crate::grid::faces::{normal, step_in, Faces};
+use crate::grid::faces::{face_dims, normal, step_in, tangents, Faces, FACE_NAMES};
 use crate::grid::topology::volume::{FaceInterface, Topology3, VolumeSide};
 use crate::grid::topology::{self as topology};
 use crate::grid::Grid2;
@@ -69,28 +70,60 @@ pub(super) struct Gridded3 {
 /// Grids every face, then every volume, of a volume topology.
 pub(super) fn generate(case: &LoadedCase, topo: &Topology3) -> Result<Gridded3> {
     let mirrors = super::mirror::mirrors(case, topo)?;
+    let conts = continuations(case, topo, &mirrors)?;
     let (mut grids, faces) = grid_faces(case, topo)?;
     let (done, mut floating) = if case.case.faces.iter().any(|f| f.floating()) {
-        if let Some(b) = mirrors.iter().position(Option::is_some) {
+        let other = mirrors
+            .iter()
+            .position(Option::is_some)
+            .map(|b| (b, "mirror volumes"))
+            .or_else(|| {
+                conts
+                    .iter()
+                    .position(|c| !c.is_empty())
+                    .map(|b| (b, "continue"))
+            });
+        if let Some((b, what)) = other {
             return Err(Error::input(
                 topo.volume_place(&case.path.display().to_string(), b),
-                "mirror volumes and floating faces in one topology are not supported yet",
+                format!("{what} and floating faces in one topology are not supported yet"),
             ));
         }
         super::floating::float(case, topo, &mut grids)?
     } else {
-        let solved: Vec<Option<(String, Block, VolumeReport)>> = (0..topo.volumes.len())
+        let solve = |v: usize, lines: Continued| {
+            let t0 = Instant::now();
+            let place = topo.volume_place(&case.path.display().to_string(), v);
+            let f = Faces::new(topo.volume_faces(v, &grids), &place)?;
+            solve_volume_continued(case, v, &f, lines, &place, t0)
+        };
+        // The volumes that continue no face first, then those that do (from the first).
+        let mut solved: Vec<Option<(String, Block, VolumeReport)>> = (0..topo.volumes.len())
             .into_par_iter()
             .map(|v| {
-                if mirrors[v].is_some() {
+                if mirrors[v].is_some() || !conts[v].is_empty() {
                     return Ok(None);
                 }
-                let t0 = Instant::now();
-                let place = topo.volume_place(&case.path.display().to_string(), v);
-                let f = Faces::new(topo.volume_faces(v, &grids), &place)?;
-                solve_volume(case, v, &f, &place, t0).map(Some)
+                solve(v, Default::default()).map(Some)
             })
             .collect::<Result<_>>()?;
+        let second: Vec<(usize, (String, Block, VolumeReport))> = (0..topo.volumes.len())
+            .into_par_iter()
+            .filter(|&v| !conts[v].is_empty())
+            .map(|v| {
+                let mut lines = Continued::default();
+                for &(s, beyond) in &conts[v] {
+                    let Some((_, Block::Volume(g), _)) = &solved[beyond.volume] else {
+                        unreachable!("the volume beyond a continued face is solved first")
+                    };
+                    lines[s] = Some(std::sync::Arc::new(arriving(topo, v, s, beyond, g)));
+                }
+                solve(v, lines).map(|r| (v, r))
+            })
+            .collect::<Result<_>>()?;
+        for (v, r) in second {
+            solved[v] = Some(r);
+        }
         // The mirror images first (they read their originals), then every block in order.
         let mut mirrored: Vec<Option<(String, Block, VolumeReport)>> = Vec::new();
         for (b, m) in mirrors.iter().enumerate() {
@@ -154,6 +187,84 @@ pub(super) fn generate(case: &LoadedCase, topo: &Topology3) -> Result<Gridded3> 
         faces,
         interfaces,
     })
+}
+
+/// For every volume, its continued faces (`continue`) and the volume side beyond each. The
+/// volume beyond is solved in the first round: it must be neither mirrored nor continuing
+/// a face itself (exit 2 naming the volume and the face).
+fn continuations(
+    case: &LoadedCase,
+    topo: &Topology3,
+    mirrors: &[Option<usize>],
+) -> Result<Vec<Vec<(usize, VolumeSide)>>> {
+    let file = case.path.display().to_string();
+    let flags = (0..topo.volumes.len())
+        .map(|v| continued_faces(&case.case.volumes[v], &topo.volume_place(&file, v)))
+        .collect::<Result<Vec<_>>>()?;
+    let interfaces = topo.connectivity().interfaces;
+    (0..topo.volumes.len())
+        .map(|v| {
+            let place = topo.volume_place(&file, v);
+            (0..6)
+                .filter(|&s| flags[v][s])
+                .map(|s| {
+                    let here = VolumeSide { volume: v, side: s };
+                    let beyond = interfaces.iter().find_map(|f| {
+                        (f.a == here)
+                            .then_some(f.b)
+                            .or((f.b == here).then_some(f.a))
+                    });
+                    let why = match beyond {
+                        None => Some("the face is not shared with another volume".to_string()),
+                        Some(b) if b.volume == v => {
+                            Some("the face is shared with this volume itself".into())
+                        }
+                        Some(b)
+                            if mirrors[b.volume].is_some() || flags[b.volume].contains(&true) =>
+                        {
+                            Some(format!(
+                                "the volume beyond, '{}', is mirrored or continues a face \
+                                 itself (it must be gridded first; not supported yet)",
+                                topo.volumes[b.volume].name
+                            ))
+                        }
+                        _ => None,
+                    };
+                    match (why, beyond) {
+                        (None, Some(b)) => Ok((s, b)),
+                        (why, _) => Err(Error::input(
+                            &place,
+                            format!(
+                                "continue = [\"{}\"]: {}",
+                                FACE_NAMES[s],
+                                why.unwrap_or_default()
+                            ),
+                        )),
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The directions in which the grid lines of `beyond` (its grid `g`) arrive at the face on
+/// side `s` of volume `v`, in `v`'s face indices: from its node one step in to the face node.
+fn arriving(topo: &Topology3, v: usize, s: usize, beyond: VolumeSide, g: &Grid3) -> Lines {
+    let [na, nb] = face_dims(s, topo.volumes[v].dims);
+    let [np, nq] = topo.face_dims(topo.volumes[v].faces[s].face);
+    let (ta, tb) = tangents(s);
+    let mut dirs = vec![[0.0; 3]; na * nb];
+    let (d, lo) = normal(beyond.side);
+    for q in 0..nq {
+        for p in 0..np {
+            let n = topo.volume_node(v, s, p, q);
+            let f = topo.volume_node(beyond.volume, beyond.side, p, q);
+            let i = step_in(f, d, lo);
+            let (xf, xi) = (g.point(f[0], f[1], f[2]), g.point(i[0], i[1], i[2]));
+            dirs[n[ta] + na * n[tb]] = std::array::from_fn(|e| xf[e] - xi[e]);
+        }
+    }
+    Lines::new(na, nb, |a, b| dirs[a + na * b])
 }
 
 /// The transfinite start grids of the volumes of a topology (from the gridded faces).

@@ -80,9 +80,25 @@ pub(crate) fn solve_volume(
     place: &str,
     t0: Instant,
 ) -> Result<(String, Block, VolumeReport)> {
-    solve_volume_from(case, k, faces, None, None, place, t0)
+    solve_volume_continued(case, k, faces, Default::default(), place, t0)
+}
+
+/// [`solve_volume`] of a volume whose lines continue across some of its faces (`continue`):
+/// `lines` the directions the volumes beyond them arrive in.
+pub(crate) fn solve_volume_continued(
+    case: &LoadedCase,
+    k: usize,
+    faces: &Faces,
+    lines: Continued,
+    place: &str,
+    t0: Instant,
+) -> Result<(String, Block, VolumeReport)> {
+    solve_volume_from(case, k, faces, None, None, lines, place, t0)
         .map(|(name, g, rep, _, _)| (name, g, rep))
 }
+
+/// The arriving lines of a volume's continued faces (None: not continued).
+pub(crate) type Continued = [Option<std::sync::Arc<crate::elliptic::continuation::Lines>>; 6];
 
 /// [`solve_volume`] from `start` (its boundary nodes replaced by the faces'), if given, also
 /// returning the control functions the grid solves [86] with (those of the corrected map when
@@ -90,12 +106,14 @@ pub(crate) fn solve_volume(
 /// from, unless frozen). With `frozen` control functions, a start and
 /// corrections, one plain Picard solve with those controls instead of the correction passes
 /// (the corrections are in the controls).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_volume_from(
     case: &LoadedCase,
     k: usize,
     faces: &Faces,
     start: Option<Grid3>,
     frozen: Option<Control3>,
+    lines: Continued,
     place: &str,
     t0: Instant,
 ) -> Result<(String, Block, VolumeReport, Control3, Option<ParamGrid3>)> {
@@ -115,7 +133,21 @@ pub(crate) fn solve_volume_from(
         }
     };
     let wall = wall_face(v, place)?;
-    let c = corrections(&spec.volumes, v, wall, place)?;
+    let mut c = corrections(&spec.volumes, v, wall, place)?;
+    for (f, &on) in continued_faces(v, place)?.iter().enumerate() {
+        if on && lines[f].is_none() {
+            return Err(Error::input(
+                place,
+                format!(
+                    "continue = [\"{}\"]: the lines continue those of the volume beyond the \
+                     face, gridded first (`run` of a volume topology without floating faces; \
+                     the volume beyond neither mirrored nor continuing itself)",
+                    crate::grid::faces::FACE_NAMES[f]
+                ),
+            ));
+        }
+    }
+    c.continued = lines;
     if c.wall.is_some() {
         check_kind(spec.solver.control, place)?;
     }
@@ -191,16 +223,7 @@ pub(crate) fn corrections(
             ),
         ));
     }
-    let mut orthogonal = [false; 6];
-    for name in &v.orthogonal {
-        let f = parse_face(name).ok_or_else(|| {
-            Error::input(
-                place,
-                format!("orthogonal = [\"{name}\"]: expected faces F1, …, F6"),
-            )
-        })?;
-        orthogonal[f] = true;
-    }
+    let mut orthogonal = face_flags(&v.orthogonal, "orthogonal", place)?;
     let profiles = match v.wall_profiles.as_deref() {
         None | Some("edges") => WallProfiles::Edges,
         Some("faces") => WallProfiles::Faces,
@@ -280,13 +303,55 @@ pub(crate) fn corrections(
         }
         symmetry[f] = true;
     }
+    let shared = shared_faces(volumes, v);
+    for (f, &on) in continued_faces(v, place)?.iter().enumerate() {
+        let name = crate::grid::faces::FACE_NAMES[f];
+        let clash = if Some(f) == wall {
+            Some("the wall")
+        } else if orthogonal[f] {
+            Some("orthogonal")
+        } else if symmetry[f] {
+            Some("a symmetry face")
+        } else if !shared[f] {
+            Some("not shared with another volume")
+        } else {
+            None
+        };
+        if let (true, Some(why)) = (on, clash) {
+            return Err(Error::input(
+                place,
+                format!("continue = [\"{name}\"]: the face is {why}"),
+            ));
+        }
+    }
     Ok(FaceCorrections {
         wall,
         orthogonal,
         profiles,
         symmetry,
-        shared: shared_faces(volumes, v),
+        shared,
+        continued: Default::default(),
     })
+}
+
+/// The faces a `[[volume]]` table `v` continues the grid lines across (`continue`).
+pub(crate) fn continued_faces(v: &VolumeSpec, place: &str) -> Result<[bool; 6]> {
+    face_flags(&v.continue_faces, "continue", place)
+}
+
+/// Flags of the faces named in the list `key` ("F1" … "F6").
+fn face_flags(names: &[String], key: &str, place: &str) -> Result<[bool; 6]> {
+    let mut on = [false; 6];
+    for name in names {
+        let f = parse_face(name).ok_or_else(|| {
+            Error::input(
+                place,
+                format!("{key} = [\"{name}\"]: expected faces F1, …, F6"),
+            )
+        })?;
+        on[f] = true;
+    }
+    Ok(on)
 }
 
 /// The faces of volume `v` that another of the `volumes` (or `v` itself, on another side)

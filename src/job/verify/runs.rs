@@ -21,7 +21,7 @@ use crate::grid::faces::Faces;
 use crate::grid::Grid2;
 use crate::io::Block;
 use crate::job::multiblock_wall::partial_walls;
-use crate::job::volume::corrections;
+use crate::job::volume::{continued_faces, corrections};
 use crate::job::{generate, Generated};
 use crate::quality::quality3d::quality3d;
 use crate::quality::{quality2d, quality_surface};
@@ -351,6 +351,12 @@ fn start_volume(case: &LoadedCase, k: usize, faces: &Faces, seed: u64) -> Result
     let mut solver =
         solve::select::for_block(&v.linear, faces.dims()).map_err(|m| Error::input(&place, m))?;
     let c = corrections(&case.case.volumes, v, wall_face(v, &place)?, &place)?;
+    if continued_faces(v, &place)?.contains(&true) {
+        return Err(Error::input(
+            &place,
+            "continue: the start-grid check does not support continued faces yet",
+        ));
+    }
     let r = match c.any() {
         true => grid_volume_corrected(
             faces,
