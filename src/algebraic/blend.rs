@@ -146,6 +146,16 @@ fn node(
     Ok((f(t).0, t))
 }
 
+/// The smoothstep t²(3 − 2t) of t clamped to [0, 1]: the cubic Hermite blend B1 of [47–49]
+/// with zero slope at both ends, the fade of the volume passes' goals next to faces they do
+/// not correct ([`crate::elliptic::crossing`], [`crate::elliptic::wall_normal`],
+/// [`crate::elliptic::continuation`]).
+#[inline]
+pub fn smoothstep(t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
 /// The Hermite-blended transformation [47]–[49] of edge functions `ef` (new edge functions
 /// from the harmonic solution [46], or arclength), with zero slope at the edges marked in
 /// `orthogonal` (E1, E2, E3, E4). With no orthogonal edge it is the straight-line map.

@@ -14,20 +14,10 @@
 //! measured along the face: in the thin cells next to a wake sheet a line that continues a
 //! lean of a few degrees would have to cross several cells of its neighbour column.
 
+use crate::algebraic::blend::smoothstep;
 use crate::grid::faces::{block_node, face_dims, normal, step_in};
+use crate::quality::geom::{dot, norm, sub, V3 as V};
 use crate::Grid3;
-
-type V = [f64; 3];
-
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn norm(a: V) -> f64 {
-    dot(a, a).sqrt()
-}
 
 /// Distance along the face from a held side face, in node steps off the face, over which the
 /// continuation goals fade in (a smoothstep). Measured on the ONERA M6's wake volume at full
@@ -102,10 +92,7 @@ impl Lines {
             .into_iter()
             .zip(held)
             .filter(|&(_, h)| h > 0)
-            .map(|(s, _)| {
-                let q = (s / (HOLD_REACH * step)).clamp(0.0, 1.0);
-                q * q * (3.0 - 2.0 * q)
-            })
+            .map(|(s, _)| smoothstep(s / (HOLD_REACH * step)))
             .product()
     }
 

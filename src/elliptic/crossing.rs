@@ -30,6 +30,7 @@
 //! nodes within 0.2 % of the prescription, fold-free; 68 Picard steps instead of 60, ~10 % more
 //! run time (docs/ONERA_M6.md, "Crossing faces").
 
+use crate::algebraic::blend::smoothstep;
 use crate::grid::faces::{block_node, face_dims, normal, step_in, tangents};
 use crate::quality::geom::{cross, dot, norm, sub, V3 as V};
 use crate::Grid3;
@@ -109,10 +110,7 @@ impl Crossings {
             across
                 .iter()
                 .filter(|&&o| !self.sides[o])
-                .fold((-m[s] / REACH).exp(), |w, &o| {
-                    let t = (m[o] / CORNER).clamp(0.0, 1.0);
-                    w * t * t * (3.0 - 2.0 * t)
-                })
+                .fold((-m[s] / REACH).exp(), |w, &o| w * smoothstep(m[o] / CORNER))
         })
     }
 
@@ -254,10 +252,7 @@ mod tests {
         // The weight: e^{-(a-1)/REACH}, faded towards the faces F5, F6 (b = 0, 8), which are
         // not crossed (CORNER).
         let want = |a: usize, b: usize| {
-            let fade = |m: usize| {
-                let t = ((m as f64 - 1.0) / CORNER).clamp(0.0, 1.0);
-                t * t * (3.0 - 2.0 * t)
-            };
+            let fade = |m: usize| smoothstep((m as f64 - 1.0) / CORNER);
             (-(a as f64 - 1.0) / REACH).exp() * fade(b) * fade(8 - b)
         };
         assert!((phi - want(1, 4)).abs() < 1e-12, "{phi}");

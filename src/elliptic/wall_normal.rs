@@ -28,6 +28,7 @@
 //! off-wall node over its target, at the wall nodes off the rim.
 
 use crate::algebraic::bilinear3d::ParamGrid3;
+use crate::algebraic::blend::smoothstep;
 use crate::elliptic::continuation::Lines;
 use crate::elliptic::crossing::Crossings;
 use crate::grid::faces::{block_node, face_dims, normal, step_in, tangents};
@@ -258,8 +259,7 @@ impl TangentGoals {
             if free {
                 for (m, h) in [a, na - 1 - a, b, nb - 1 - b].into_iter().zip(held) {
                     if h > 0 {
-                        let t = ((m as f64 - h as f64) / SIDE_FADE).clamp(0.0, 1.0);
-                        psi *= t * t * (3.0 - 2.0 * t);
+                        psi *= smoothstep((m as f64 - h as f64) / SIDE_FADE);
                     }
                 }
             }
