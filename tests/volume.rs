@@ -656,6 +656,40 @@ fn large_box_memory_paths_reproduce_an_exact_discrete_solution() {
     assert!(diff < 1e-9, "{diff:.2e}");
 }
 
+/// Arriving lines that do not fit the continued face (a caller's mistake) are an error
+/// naming the block and the face, not an index out of bounds.
+#[test]
+fn continued_lines_that_do_not_fit_the_face_are_an_error() {
+    use ellipgrid::elliptic::continuation::Lines;
+    use ellipgrid::elliptic::orthogonal3d::{grid_volume_corrected, FaceCorrections};
+    let faces = warped_box([9, 9, 9]);
+    let run = |nb: usize| {
+        let mut c = FaceCorrections::default();
+        let lines = Lines::new(9, nb, |_, _| [0.0, 0.0, 1.0]);
+        c.continued[4] = Some(std::sync::Arc::new(lines));
+        let params = PicardParams::default();
+        grid_volume_corrected(
+            &faces,
+            &c,
+            None,
+            &mut BiCgStabIlu::new(),
+            &params,
+            "box",
+            &mut |_, _| {},
+        )
+    };
+    let Err(e) = run(8) else {
+        panic!("lines of 9 x 8 nodes on a face of 9 x 9 were taken")
+    };
+    let m = e.to_string();
+    assert!(
+        m.contains("box") && m.contains("continue = [\"F5\"]"),
+        "{m}"
+    );
+    // the fitting lines run
+    assert!(run(9).is_ok());
+}
+
 /// The correction passes say what the grid kept (`PicardInfo::passes`). Orthogonality at F5
 /// of the warped box: the passes run and the grid keeps the last one. When the first pass's
 /// solve fails (its setup and the three halved retries refused), the grid goes back to the

@@ -34,7 +34,7 @@ use crate::elliptic::wall::{
 };
 use crate::elliptic::wall_normal::{shift_tangential, TangentGoals, LAYER_CUTOFF, SIDE_HOLD};
 use crate::elliptic::{nested3d, poisson3d};
-use crate::grid::faces::{Faces, FACE_NAMES};
+use crate::grid::faces::{face_dims, Faces, FACE_NAMES};
 use crate::solve::stencil19::Stencil19;
 use crate::solve::LinearSolver;
 use crate::{Error, Grid3, Result};
@@ -209,6 +209,19 @@ pub fn grid_volume_corrected_to(
         }
     };
     let continuing = c.continued.iter().any(Option::is_some);
+    for (f, l) in c.continued.iter().enumerate() {
+        let want = face_dims(f, faces.dims());
+        if let Some(got) = l.as_ref().map(|l| l.dims()).filter(|&d| d != want) {
+            return Err(Error::input(
+                place,
+                format!(
+                    "continue = [\"{}\"]: the arriving lines are given at {got:?} nodes, the \
+                     face has {want:?}",
+                    FACE_NAMES[f]
+                ),
+            ));
+        }
+    }
     let AlgebraicMap {
         param: mut pg,
         controls,
